@@ -1,0 +1,3 @@
+namespace cutbench::framework {
+int placeholder() { return 0; }
+}

@@ -1,0 +1,86 @@
+#pragma once
+// The contract between a solver's case runner and the framework.
+//
+// A solver registers a SolverSpec: named numeric parameters (ParamSpec, SI units, ranges) and a
+// run function. The run function is pure with respect to I/O: it returns a RunOutput (tables of
+// histories, particle snapshots, scalar results) and the framework writes it to HDF5. Progress
+// is reported through the callback (fraction in [0,1] and a short message: simulated time, ETA).
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cutbench/common/model.hpp"
+
+namespace cutbench {
+
+// Equal-length named columns, each with an SI unit, e.g. a force history (t, F_c, F_t).
+struct Table {
+  std::string name;
+  std::vector<std::string> order;  // column order for output
+  std::map<std::string, std::vector<double>> columns;
+  std::map<std::string, std::string> units;
+
+  void add(const std::string& column, const std::string& unit, std::vector<double> values) {
+    if (!columns.count(column)) order.push_back(column);
+    columns[column] = std::move(values);
+    units[column] = unit;
+  }
+  std::size_t rows() const { return columns.empty() ? 0 : columns.begin()->second.size(); }
+};
+
+// Particle (or node) snapshot at one time: positions plus per-point fields, written to HDF5 with
+// an XDMF index so ParaView can open it.
+struct Snapshot {
+  double time = 0.0;
+  std::vector<double> x, y;
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> fields;
+  std::map<std::string, std::string> units;
+
+  void add(const std::string& field, const std::string& unit, std::vector<double> values) {
+    if (!fields.count(field)) order.push_back(field);
+    fields[field] = std::move(values);
+    units[field] = unit;
+  }
+};
+
+struct RunOutput {
+  std::vector<Table> tables;
+  std::vector<Snapshot> snapshots;
+  Values scalars;                              // e.g. steady F_c, transition flags
+  std::map<std::string, std::string> scalar_units;
+  std::vector<std::string> notes;              // assumptions and warnings, shown in the report
+};
+
+using ProgressFn = std::function<void(double fraction, const std::string& message)>;
+
+struct SolverSpec {
+  std::string name;         // e.g. "mpm_cutting"
+  std::string description;
+  std::string source;       // paper and sections
+  std::vector<ParamSpec> params;
+  std::vector<OutputSpec> scalars;  // the scalar results a run reports
+  std::function<RunOutput(const Values& params, const ProgressFn& progress)> run;
+};
+
+class SolverRegistry {
+public:
+  static SolverRegistry& instance() {
+    static SolverRegistry r;
+    return r;
+  }
+  void add(SolverSpec spec) { solvers_.push_back(std::move(spec)); }
+  const SolverSpec* find(const std::string& name) const {
+    for (const auto& s : solvers_) {
+      if (s.name == name) return &s;
+    }
+    return nullptr;
+  }
+  const std::vector<SolverSpec>& all() const { return solvers_; }
+
+private:
+  std::vector<SolverSpec> solvers_;
+};
+
+}  // namespace cutbench

@@ -1,0 +1,134 @@
+#include "cutbench/common/model.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "cutbench/common/errors.hpp"
+
+namespace cutbench {
+
+ParamSpec param(std::string name, Dim dim, std::string description) {
+  ParamSpec p;
+  p.name = std::move(name);
+  p.dim = dim;
+  p.description = std::move(description);
+  return p;
+}
+
+ParamSpec& positive(ParamSpec& p) {
+  p.min = 0.0;
+  p.min_inclusive = false;
+  return p;
+}
+
+ParamSpec& non_negative(ParamSpec& p) {
+  p.min = 0.0;
+  p.min_inclusive = true;
+  return p;
+}
+
+std::string describe_range(const ParamSpec& p) {
+  std::ostringstream os;
+  os.precision(6);
+  const std::string unit = si_unit(p.dim);
+  auto show = [&](double v) {
+    if (p.dim == Dim::angle) {
+      os << v * 180.0 / 3.14159265358979323846 << " deg";
+    } else {
+      os << v << (unit == "1" ? "" : " " + unit);
+    }
+  };
+  const bool has_min = std::isfinite(p.min), has_max = std::isfinite(p.max);
+  if (has_min && has_max) {
+    os << (p.min_inclusive ? "[" : "(");
+    show(p.min);
+    os << ", ";
+    show(p.max);
+    os << (p.max_inclusive ? "]" : ")");
+  } else if (has_min) {
+    os << (p.min_inclusive ? ">= " : "> ");
+    show(p.min);
+  } else if (has_max) {
+    os << (p.max_inclusive ? "<= " : "< ");
+    show(p.max);
+  } else {
+    os << "any finite value";
+  }
+  return os.str();
+}
+
+Values validate_params(const ModelSpec& spec, const Values& given) {
+  Values out;
+  for (const auto& [name, value] : given) {
+    auto it = std::find_if(spec.params.begin(), spec.params.end(),
+                           [&](const ParamSpec& p) { return p.name == name; });
+    if (it == spec.params.end()) {
+      std::string known;
+      for (const auto& p : spec.params) known += (known.empty() ? "" : ", ") + p.name;
+      throw InputError(name, "unknown parameter of model '" + spec.name + "' (known: " + known + ")");
+    }
+  }
+  for (const auto& p : spec.params) {
+    auto it = given.find(p.name);
+    double v;
+    if (it != given.end()) {
+      v = it->second;
+    } else if (p.default_value) {
+      out[p.name] = *p.default_value;
+      continue;
+    } else {
+      throw InputError(p.name, "missing required parameter of model '" + spec.name + "' (" +
+                                   p.description + ", " + describe_range(p) + ")");
+    }
+    if (!std::isfinite(v)) throw InputError(p.name, "must be finite");
+    const bool below = p.min_inclusive ? v < p.min : v <= p.min;
+    const bool above = p.max_inclusive ? v > p.max : v >= p.max;
+    if (below || above) {
+      std::ostringstream os;
+      os.precision(6);
+      if (p.dim == Dim::angle) {
+        os << v * 180.0 / 3.14159265358979323846 << " deg";
+      } else {
+        os << v << (si_unit(p.dim) == "1" ? "" : " " + si_unit(p.dim));
+      }
+      throw InputError(p.name, "value " + os.str() + " out of range; expected " + describe_range(p));
+    }
+    out[p.name] = v;
+  }
+  return out;
+}
+
+ModelRegistry& ModelRegistry::instance() {
+  static ModelRegistry registry;
+  return registry;
+}
+
+void ModelRegistry::add(ModelSpec spec) {
+  if (find(spec.name)) throw std::logic_error("model registered twice: " + spec.name);
+  models_.push_back(std::move(spec));
+}
+
+const ModelSpec* ModelRegistry::find(const std::string& name) const {
+  for (const auto& m : models_) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
+
+const ModelSpec& ModelRegistry::get(const std::string& name) const {
+  if (const auto* m = find(name)) return *m;
+  throw InputError("model", "unknown model '" + name + "' (see `cutbench eval --list`)");
+}
+
+ModelResult evaluate_model(const ModelSpec& spec, const Values& given) {
+  Values params = validate_params(spec, given);
+  ModelResult r = spec.evaluate(params);
+  if (!r.applicable) {
+    for (const auto& o : spec.outputs) {
+      if (!r.outputs.count(o.name)) r.outputs[o.name] = nan_value();
+    }
+  }
+  return r;
+}
+
+}  // namespace cutbench

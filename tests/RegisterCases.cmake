@@ -1,0 +1,1 @@
+# Case registration is filled in by the framework (see benchmarks/README.md).

@@ -3,7 +3,7 @@ add_library(cutbench_warnings INTERFACE)
 add_library(cutbench::warnings ALIAS cutbench_warnings)
 target_compile_options(cutbench_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align
-  -Wunused -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion -Wformat=2)
+  -Wunused -Woverloaded-virtual -Wdouble-promotion -Wformat=2)
 if(CUTBENCH_WARNINGS_AS_ERRORS)
   target_compile_options(cutbench_warnings INTERFACE -Werror)
 endif()

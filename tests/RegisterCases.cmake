@@ -1,1 +1,27 @@
-# Case registration is filled in by the framework (see benchmarks/README.md).
+# Register every case file with ctest: `case:<paper>/<item>` (label quick) and
+# `case-full:<paper>/<item>` (label full), with labels paper:<id> and solver:<name>.
+# NOT IMPLEMENTED cases exit 77 and show as skipped.
+file(GLOB CUTBENCH_CASE_FILES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/benchmarks/*/*.toml)
+foreach(case_file ${CUTBENCH_CASE_FILES})
+  get_filename_component(item ${case_file} NAME_WE)
+  get_filename_component(paper_dir ${case_file} DIRECTORY)
+  get_filename_component(paper ${paper_dir} NAME)
+  file(STRINGS ${case_file} solver_line REGEX "^solver *=")
+  file(STRINGS ${case_file} tiers_line REGEX "^tiers *=")
+  string(REGEX REPLACE "^solver *= *\"([a-z_]+)\".*" "\\1" solver "${solver_line}")
+  foreach(tier quick full)
+    if(tiers_line MATCHES "\"${tier}\"")
+      if(tier STREQUAL "quick")
+        set(test_name "case:${paper}/${item}")
+      else()
+        set(test_name "case-full:${paper}/${item}")
+      endif()
+      add_test(NAME ${test_name}
+               COMMAND cutbench run ${paper}/${item} --tier ${tier} --out ${CMAKE_BINARY_DIR}/results-${tier} --ctest)
+      set_tests_properties(${test_name} PROPERTIES
+        LABELS "${tier};paper:${paper};solver:${solver}"
+        SKIP_RETURN_CODE 77
+        ENVIRONMENT "OMP_NUM_THREADS=${CUTBENCH_TEST_THREADS};LC_ALL=C;CUTBENCH_ROOT=${PROJECT_SOURCE_DIR}")
+    endif()
+  endforeach()
+endforeach()

@@ -1,1 +1,392 @@
-int main() { return 0; }
+// cutbench — the command line: list, run, eval, bench, report.
+// Exit codes: 0 all pass, 1 a check failed (or an internal error), 2 bad input (nothing written).
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/framework/case.hpp"
+#include "cutbench/framework/runner.hpp"
+#include "cutbench/framework/store.hpp"
+
+namespace fs = std::filesystem;
+using namespace cutbench;
+using namespace cutbench::framework;
+
+namespace {
+
+constexpr int kExitFail = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitSkip = 77;  // ctest SKIP_RETURN_CODE for NOT IMPLEMENTED cases
+
+// Parse key=value pairs for a model/solver against its parameter specs.
+Values parse_assignments(const std::vector<std::string>& args, const std::vector<ParamSpec>& specs,
+                         const std::string& owner) {
+  Values v;
+  for (const auto& a : args) {
+    const auto eq = a.find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError(a, "expected key=value");
+    const std::string key = a.substr(0, eq);
+    const ParamSpec* p = nullptr;
+    for (const auto& s : specs) {
+      if (s.name == key) p = &s;
+    }
+    if (!p) {
+      std::string known;
+      for (const auto& s : specs) known += (known.empty() ? "" : ", ") + s.name;
+      throw InputError(key, "unknown parameter of '" + owner + "' (known: " + known + ")");
+    }
+    v[key] = parse_quantity(a.substr(eq + 1), p->dim, key);
+  }
+  return v;
+}
+
+std::string fmt(double v, int prec = 6) {
+  if (!std::isfinite(v)) return "nan";
+  std::ostringstream os;
+  os << std::setprecision(prec) << v;
+  return os.str();
+}
+
+class Progress {
+public:
+  explicit Progress(bool enabled) : enabled_(enabled), t0_(std::chrono::steady_clock::now()) {}
+  void operator()(double f, const std::string& msg) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::seconds(2) && f < 1.0) return;
+    last_ = now;
+    const double el = std::chrono::duration<double>(now - t0_).count();
+    const double eta = f > 1e-6 ? el * (1 - f) / f : 0.0;
+    std::fprintf(stderr, "  [%5.1f%%] %s  elapsed %.0fs ETA %.0fs\n", 100 * f, msg.c_str(), el, eta);
+  }
+
+private:
+  bool enabled_;
+  std::chrono::steady_clock::time_point t0_, last_{};
+};
+
+int cmd_list(bool as_json, const fs::path& results, const std::string& paper_filter) {
+  const fs::path root = source_root();
+  json all = json::array();
+  std::map<std::string, std::map<std::string, int>> counts;
+  for (const auto& file : discover_case_files(root)) {
+    CaseSpec c = load_case(file, "quick");
+    if (!paper_filter.empty() && c.paper != paper_filter) continue;
+    std::string status = c.implemented() ? "NOT RUN" : "NOT IMPLEMENTED";
+    json last = read_case_json(results, c);
+    if (c.implemented() && last.is_object() && last.contains("status")) status = last["status"].get<std::string>();
+    counts[c.paper][status]++;
+    json j = {{"case", c.id}, {"paper", c.paper}, {"item", c.item}, {"title", c.title},
+              {"solver", c.solver}, {"models", c.models}, {"tiers", c.tiers}, {"status", status}};
+    if (!c.implemented()) j["reason"] = c.reason;
+    if (last.is_object() && last.contains("date")) j["last_run"] = last["date"];
+    all.push_back(j);
+  }
+  if (as_json) {
+    std::cout << all.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << std::left << std::setw(28) << "CASE" << std::setw(14) << "ITEM" << std::setw(10) << "SOLVER"
+            << std::setw(12) << "TIERS" << "STATUS\n";
+  for (const auto& j : all) {
+    std::string tiers;
+    for (const auto& t : j["tiers"]) tiers += (tiers.empty() ? "" : ",") + t.get<std::string>();
+    std::cout << std::left << std::setw(28) << j["case"].get<std::string>() << std::setw(14)
+              << j["item"].get<std::string>() << std::setw(10) << j["solver"].get<std::string>() << std::setw(12)
+              << tiers << j["status"].get<std::string>() << "\n";
+  }
+  std::cout << "\n";
+  for (const auto& [paper, m] : counts) {
+    int n = 0;
+    for (const auto& [s, k] : m) n += k;
+    std::cout << paper << ": " << n << " cases";
+    for (const auto& [s, k] : m) std::cout << ", " << k << " " << s;
+    std::cout << "\n";
+  }
+  return 0;
+}
+
+int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const std::string& tier_opt,
+            const fs::path& out, bool ctest_mode, bool strict) {
+  const fs::path root = source_root();
+  const std::string tier = tier_opt.empty() ? "quick" : tier_opt;
+  std::vector<fs::path> files;
+  for (const auto& id : ids) files.push_back(resolve_case(id, root));
+  if (!paper.empty() || (!tier_opt.empty() && ids.empty())) {
+    if (!paper.empty() && std::find(kPaperIds.begin(), kPaperIds.end(), paper) == kPaperIds.end()) {
+      throw InputError("--paper", "unknown paper '" + paper + "'");
+    }
+    for (const auto& f : discover_case_files(root)) {
+      if (!paper.empty() && f.parent_path().filename() != paper) continue;
+      files.push_back(f);
+    }
+  }
+  if (files.empty()) throw InputError("run", "no cases selected (give case ids, --paper or --tier)");
+  // Validate everything first: a bad case writes nothing.
+  std::vector<CaseSpec> cases;
+  for (const auto& f : files) {
+    CaseSpec c = load_case(f, tier);
+    if (!tier_opt.empty() && ids.empty() && !c.in_tier(tier)) continue;
+    cases.push_back(std::move(c));
+  }
+  int unexpected = 0, n_pass = 0, n_fail = 0, n_notrun = 0, n_ni = 0;
+  bool all_ni = true;
+  for (const auto& c : cases) {
+    std::cerr << "run " << c.id << " (" << tier << ")\n";
+    Progress progress(true);
+    CaseResult r = run_case(c, tier, [&](double f, const std::string& m) { progress(f, m); });
+    if (c.implemented()) {
+      all_ni = false;
+      write_hdf5(c, r, out);
+    }
+    write_case_json(out, c, r);
+    for (const auto& ch : r.checks) {
+      if (ch.status == "FAIL") {
+        const bool known = !ch.known_failure.empty();
+        if (!known || strict) ++unexpected;
+        std::cout << "  FAIL" << (known ? " (known)" : "") << " " << c.id << " " << ch.key << ": value "
+                  << fmt(ch.value) << " vs reference "
+                  << (ch.is_range ? "[" + fmt(ch.lower) + ", " + fmt(ch.upper) + "]" : fmt(ch.reference)) << " "
+                  << ch.units << " (error " << fmt(ch.error) << ", tolerance " << fmt(ch.tolerance)
+                  << (ch.relative_tol ? " rel" : "") << ")" << (known ? " — " + ch.known_failure : "") << "\n";
+      } else if (ch.status == "NOT RUN") {
+        std::cout << "  NOT RUN " << c.id << " " << ch.key << ": " << ch.message << "\n";
+      }
+    }
+    const std::string& s = r.status;
+    (s == "PASS" ? n_pass : s == "FAIL" ? n_fail : s == "NOT RUN" ? n_notrun : n_ni)++;
+    std::cout << std::left << std::setw(16) << s << c.id << "  (" << r.checks.size() << " checks, "
+              << fmt(r.wall_time_s, 3) << " s)\n";
+  }
+  merge_checks_json(out);
+  std::cout << "\n" << cases.size() << " cases: " << n_pass << " PASS, " << n_fail << " FAIL, " << n_notrun
+            << " NOT RUN, " << n_ni << " NOT IMPLEMENTED; results in " << out.string() << "\n";
+  if (unexpected > 0) return kExitFail;
+  if (ctest_mode && all_ni) return kExitSkip;
+  return 0;
+}
+
+int cmd_eval_list(bool as_json) {
+  json all = json::array();
+  for (const auto& m : ModelRegistry::instance().all()) {
+    json j = {{"model", m.name}, {"description", m.description}, {"source", m.source}};
+    for (const auto& p : m.params) {
+      json pj = {{"name", p.name}, {"unit", si_unit(p.dim)}, {"description", p.description},
+                 {"range", describe_range(p)}};
+      if (p.default_value) {
+        pj["default"] = std::isfinite(*p.default_value) ? json(*p.default_value) : json("unset");
+      } else {
+        pj["default"] = nullptr;
+      }
+      j["params"].push_back(pj);
+    }
+    for (const auto& o : m.outputs) {
+      j["outputs"].push_back({{"name", o.name}, {"unit", si_unit(o.dim)}, {"description", o.description}});
+    }
+    all.push_back(j);
+  }
+  if (as_json) {
+    std::cout << all.dump(2) << "\n";
+    return 0;
+  }
+  for (const auto& j : all) {
+    std::cout << j["model"].get<std::string>() << " — " << j["description"].get<std::string>() << "\n"
+              << "  source: " << j["source"].get<std::string>() << "\n  params:\n";
+    for (const auto& p : j["params"]) {
+      std::cout << "    " << std::left << std::setw(12) << p["name"].get<std::string>() << std::setw(10)
+                << p["unit"].get<std::string>() << p["description"].get<std::string>() << "; "
+                << p["range"].get<std::string>();
+      if (p["default"].is_null()) {
+        std::cout << "; required";
+      } else {
+        std::cout << "; default " << p["default"].dump();
+      }
+      std::cout << "\n";
+    }
+    std::cout << "  outputs:\n";
+    for (const auto& o : j["outputs"]) {
+      std::cout << "    " << std::left << std::setw(16) << o["name"].get<std::string>() << std::setw(10)
+                << o["unit"].get<std::string>() << o["description"].get<std::string>() << "\n";
+    }
+  }
+  return 0;
+}
+
+int cmd_eval(const std::string& model, const std::vector<std::string>& args, bool as_json) {
+  const ModelSpec& m = ModelRegistry::instance().get(model);
+  const Values given = parse_assignments(args, m.params, model);
+  const ModelResult r = evaluate_model(m, given);
+  const Values params = validate_params(m, given);
+  if (as_json) {
+    json j = {{"model", model}, {"applicable", r.applicable}};
+    for (const auto& [k, v] : params) j["inputs"][k] = std::isfinite(v) ? json(v) : json(nullptr);
+    for (const auto& o : m.outputs) {
+      const double v = r.outputs.count(o.name) ? r.outputs.at(o.name) : nan_value();
+      j["outputs"][o.name] = std::isfinite(v) ? json(v) : json(nullptr);
+      j["units"][o.name] = si_unit(o.dim);
+    }
+    if (!r.note.empty()) j["note"] = r.note;
+    std::cout << j.dump(2) << "\n";
+  } else {
+    if (!r.applicable) std::cout << "not applicable: " << r.note << "\n";
+    for (const auto& o : m.outputs) {
+      const double v = r.outputs.count(o.name) ? r.outputs.at(o.name) : nan_value();
+      std::cout << std::left << std::setw(18) << o.name << std::setw(16) << fmt(v, 10) << si_unit(o.dim) << "\n";
+    }
+  }
+  return 0;
+}
+
+int cmd_bench(const std::string& name, const std::vector<std::string>& args, int repeat, const fs::path& out) {
+  json report = {{"bench", name}, {"software", software_version()}, {"date", utc_now_iso()}};
+#ifdef _OPENMP
+  report["threads"] = omp_get_max_threads();
+#endif
+  if (name == "analytic") {
+    // Throughput of every analytic model at its defaults plus representative inputs from cases.
+    std::size_t evals = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int rep = 0; rep < std::max(1, repeat); ++rep) {
+      for (const auto& file : discover_case_files(source_root())) {
+        CaseSpec c = load_case(file, "full");
+        if (!c.implemented() || c.solver != "analytic") continue;
+        run_case(c, "full", nullptr);
+        ++evals;
+      }
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report["analytic_cases_run"] = evals;
+    report["wall_time_s"] = wall;
+    std::cout << "analytic: " << evals << " case runs (full tier) in " << fmt(wall, 4) << " s\n";
+  } else {
+    const SolverSpec* sv = SolverRegistry::instance().find(name);
+    if (!sv) {
+      std::string known = "analytic";
+      for (const auto& s : SolverRegistry::instance().all()) known += ", " + s.name;
+      throw InputError("bench", "unknown benchmark '" + name + "' (available: " + known + ")");
+    }
+    const Values params = validate_params(ModelSpec{sv->name, "", "", sv->params, {}, {}},
+                                          parse_assignments(args, sv->params, name));
+    Progress progress(true);
+    for (int rep = 0; rep < std::max(1, repeat); ++rep) {
+      const auto t0 = std::chrono::steady_clock::now();
+      RunOutput r = sv->run(params, [&](double f, const std::string& m) { progress(f, m); });
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      json rj = {{"wall_time_s", wall}};
+      for (const auto& [k, v] : r.scalars) rj["scalars"][k] = std::isfinite(v) ? json(v) : json(nullptr);
+      report["runs"].push_back(rj);
+      std::cout << name << " run " << rep + 1 << ": " << fmt(wall, 4) << " s\n";
+      for (const auto& [k, v] : r.scalars) std::cout << "  " << std::left << std::setw(28) << k << fmt(v) << "\n";
+    }
+  }
+  write_atomic(out / "bench" / (name + ".json"), report.dump(2) + "\n");
+  return 0;
+}
+
+int cmd_report(const fs::path& results, const fs::path& out) {
+  write_manifest(results);
+  const std::string cmd = std::string(CUTBENCH_PYTHON) + " \"" +
+                          (source_root() / "reports" / "make_report.py").string() + "\" --root \"" +
+                          source_root().string() + "\" --results \"" + results.string() + "\" --out \"" +
+                          out.string() + "\"";
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0) {
+    std::cerr << "cutbench report: the report generator failed (" << cmd << ")\n";
+    return kExitFail;
+  }
+  std::cout << "report: " << (out / "index.html").string() << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"cutbench — validation and benchmark suite for orthogonal-cutting simulation"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", software_version());
+
+  bool list_json = false;
+  std::string results_dir = "results", list_paper;
+  auto* list = app.add_subcommand("list", "Every case with paper, figure/table, tiers and last status");
+  list->add_flag("--json", list_json, "JSON output");
+  list->add_option("--results", results_dir, "Results directory (for the last status)");
+  list->add_option("--paper", list_paper, "Only this paper");
+
+  std::vector<std::string> run_ids;
+  std::string run_paper, run_tier, run_out = "results";
+  int threads = 0;
+  bool ctest_mode = false, strict = false;
+  auto* run = app.add_subcommand("run", "Run cases: write HDF5 results and checks.json");
+  run->add_option("cases", run_ids, "Case ids (nairn2015/fig08) or paths to case files");
+  run->add_option("--paper", run_paper, "All cases of one paper");
+  run->add_option("--tier", run_tier, "Tier: quick (CI) or full (paper resolution)");
+  run->add_option("--out", run_out, "Results directory");
+  run->add_option("-j,--threads", threads, "OpenMP threads");
+  run->add_flag("--ctest", ctest_mode, "Exit 77 (skip) when every selected case is NOT IMPLEMENTED");
+  run->add_flag("--strict", strict, "Known failures fail the run too");
+
+  std::string eval_model;
+  std::vector<std::string> eval_args;
+  bool eval_json = false, eval_list = false;
+  auto* eval = app.add_subcommand("eval", "Evaluate one analytical model (SI units in and out)");
+  eval->add_option("model", eval_model, "Model name (see --list)");
+  eval->add_option("params", eval_args, "key=value (SI, or with a unit: h=2mm rake=30deg)");
+  eval->add_flag("--json", eval_json, "JSON output");
+  eval->add_flag("--list", eval_list, "List every model with its parameters");
+
+  std::string bench_name, bench_out = "results";
+  std::vector<std::string> bench_args;
+  int bench_repeat = 1;
+  auto* bench = app.add_subcommand("bench", "Throughput benchmarks (analytic, or a solver name)");
+  bench->add_option("name", bench_name, "analytic or a solver (e.g. mpm_cutting)")->required();
+  bench->add_option("params", bench_args, "key=value solver parameters");
+  bench->add_option("--repeat", bench_repeat, "Repetitions");
+  bench->add_option("--out", bench_out, "Results directory (bench/<name>.json)");
+  bench->add_option("-j,--threads", threads, "OpenMP threads");
+
+  std::string report_results = "results", report_out = "report";
+  auto* report = app.add_subcommand("report", "Static HTML report from the results directory");
+  report->add_option("--results", report_results, "Results directory");
+  report->add_option("--out", report_out, "Output directory");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : kExitBadInput;
+  }
+#ifdef _OPENMP
+  if (threads > 0) omp_set_num_threads(threads);
+#endif
+  try {
+    register_all();
+    if (*list) return cmd_list(list_json, results_dir, list_paper);
+    if (*run) return cmd_run(run_ids, run_paper, run_tier, run_out, ctest_mode, strict);
+    if (*eval) {
+      if (eval_list) return cmd_eval_list(eval_json);
+      if (eval_model.empty()) throw InputError("model", "give a model name (see `cutbench eval --list`)");
+      return cmd_eval(eval_model, eval_args, eval_json);
+    }
+    if (*bench) return cmd_bench(bench_name, bench_args, bench_repeat, bench_out);
+    if (*report) return cmd_report(report_results, report_out);
+  } catch (const InputError& e) {
+    std::cerr << "cutbench: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "cutbench: internal error: " << e.what() << "\n";
+    return kExitFail;
+  }
+  return 0;
+}

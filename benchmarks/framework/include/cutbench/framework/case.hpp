@@ -1,0 +1,85 @@
+#pragma once
+// Case files: one TOML file per paper figure or table, under benchmarks/<paper>/<item>.toml.
+// The schema is documented in benchmarks/README.md. Loading validates everything up front
+// (unknown keys, units, parameter ranges, reference files) so a bad case fails before any output.
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cutbench/common/model.hpp"
+
+namespace cutbench::framework {
+
+using json = nlohmann::json;
+
+extern const std::vector<std::string> kPaperIds;
+
+
+struct SweepSpec {
+  std::string param;
+  std::vector<double> values;  // SI
+};
+
+// One point per row of a reference table: model parameters taken from table columns.
+struct RowsSpec {
+  std::filesystem::path file;
+  std::map<std::string, std::string> params;  // model parameter -> column name
+};
+
+struct SeriesSpec {
+  std::string name;
+  std::string model;   // analytic model or solver name
+  bool solver = false; // true when `model` names a registered solver
+  Values params;       // SI, after tier overrides
+  std::optional<SweepSpec> sweep;
+  std::optional<RowsSpec> rows;
+  // Further parameters swept together with `sweep` (same length), e.g. E_T alongside h.
+  std::map<std::string, std::vector<double>> zip;
+};
+
+struct CheckSpec {
+  std::string key, kind, metric, units, source, known_failure, description;
+  json value, reference, tolerance;
+};
+
+struct CaseSpec {
+  std::filesystem::path file;
+  std::string id, paper, item_id, item, title, requirement, solver, status, reason;
+  std::vector<std::string> models, tiers, assumptions;
+  std::vector<SeriesSpec> series;
+  std::vector<CheckSpec> checks;
+  json plots = json::array();
+  json tables = json::array();
+  bool implemented() const { return status == "implemented"; }
+  bool in_tier(const std::string& tier) const;
+};
+
+// Root of the source tree (benchmarks/, reference_data/): $CUTBENCH_ROOT, else the build-time path.
+std::filesystem::path source_root();
+
+// Load and validate one case; `tier` selects the tier overrides ("quick" or "full").
+CaseSpec load_case(const std::filesystem::path& file, const std::string& tier);
+
+// All case files under benchmarks/<paper>/ (sorted by id).
+std::vector<std::filesystem::path> discover_case_files(const std::filesystem::path& root);
+
+// Resolve "nairn2015/fig08" or a path to a case file.
+std::filesystem::path resolve_case(const std::string& id_or_path, const std::filesystem::path& root);
+
+// Inventory items of a paper: reference_data/<paper>/inventory (id, kind, number, title).
+// The inventory's "# key: value" comment lines carry the paper's citation and doi.
+struct InventoryItem {
+  std::string id, kind, number, title;
+};
+struct Inventory {
+  std::string paper;
+  std::map<std::string, std::string> meta;
+  std::vector<InventoryItem> items;
+};
+Inventory load_inventory(const std::filesystem::path& root, const std::string& paper);
+
+}  // namespace cutbench::framework

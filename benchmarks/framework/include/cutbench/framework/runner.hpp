@@ -1,0 +1,26 @@
+#pragma once
+#include <functional>
+#include <string>
+
+#include "cutbench/common/solver.hpp"
+#include "cutbench/framework/case.hpp"
+#include "cutbench/framework/reference.hpp"
+#include "cutbench/framework/results.hpp"
+
+namespace cutbench::framework {
+
+// Register every analytic model and solver that this build contains (idempotent).
+void register_all();
+
+// Compute the series of a case (analytic models and solver runs) and evaluate its checks.
+CaseResult run_case(const CaseSpec& spec, const std::string& tier, const ProgressFn& progress);
+
+// Evaluate the checks of a case against computed series.
+std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector<SeriesResult>& series,
+                                         ReferenceCache& refs);
+
+// Overall status: NOT IMPLEMENTED, else FAIL if any unexpected failure, else NOT RUN if any
+// check not run and none passed, else PASS.
+std::string case_status(const CaseSpec& spec, const std::vector<CheckRecord>& checks);
+
+}  // namespace cutbench::framework

@@ -1,0 +1,390 @@
+#include "cutbench/framework/case.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/common/solver.hpp"
+#include "cutbench/framework/reference.hpp"
+
+namespace cutbench::framework {
+
+const std::vector<std::string> kPaperIds = {"nairn2015", "aghababaei2021", "figueiredo2024",
+                                            "afrasiabi2021", "kahwash2018"};
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::set<std::string> kCaseKeys = {
+    "id",     "paper",  "item",   "title",       "requirement", "status", "reason",
+    "solver", "models", "tiers",  "assumptions", "params",      "tier",   "series",
+    "checks", "plots",  "tables"};
+const std::set<std::string> kSeriesKeys = {"name", "model", "params", "sweep", "rows", "zip", "tier"};
+const std::set<std::string> kCheckKeys = {"key",    "kind",      "metric",        "value",
+                                          "reference", "tolerance", "units",      "source",
+                                          "known_failure", "description"};
+const std::set<std::string> kKinds = {"verification", "reproduction", "validation"};
+const std::set<std::string> kMetrics = {"relative", "absolute", "within", "curve_max_norm",
+                                        "windowed_mean", "feature"};
+const std::set<std::string> kStatuses = {"implemented", "not_implemented"};
+const std::set<std::string> kTiers = {"quick", "full"};
+
+json toml_to_json(const toml::table& t) {
+  std::ostringstream os;
+  os << toml::json_formatter{t};
+  return json::parse(os.str());
+}
+
+void check_keys(const json& obj, const std::set<std::string>& allowed, const std::string& where) {
+  if (!obj.is_object()) throw InputError(where, "expected a table");
+  for (const auto& [k, v] : obj.items()) {
+    if (!allowed.count(k)) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw InputError(where.empty() ? k : where + "." + k, "unknown key (allowed: " + list + ")");
+    }
+  }
+}
+
+std::string get_string(const json& obj, const std::string& key, const std::string& where,
+                       bool required = true) {
+  if (!obj.contains(key)) {
+    if (required) throw InputError(where + key, "missing required key");
+    return {};
+  }
+  if (!obj[key].is_string()) throw InputError(where + key, "expected a string");
+  return obj[key].get<std::string>();
+}
+
+std::vector<std::string> get_strings(const json& obj, const std::string& key, const std::string& where) {
+  std::vector<std::string> out;
+  if (!obj.contains(key)) return out;
+  if (!obj[key].is_array()) throw InputError(where + key, "expected an array of strings");
+  for (const auto& v : obj[key]) {
+    if (!v.is_string()) throw InputError(where + key, "expected an array of strings");
+    out.push_back(v.get<std::string>());
+  }
+  return out;
+}
+
+double quantity(const json& v, Dim dim, const std::string& field) {
+  if (v.is_number()) return v.get<double>();
+  if (v.is_string()) return parse_quantity(v.get<std::string>(), dim, field);
+  throw InputError(field, "expected a number or a \"value unit\" string");
+}
+
+const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::string& name) {
+  for (const auto& p : params) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
+std::vector<double> linspace(double a, double b, int n) {
+  std::vector<double> v(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) v[static_cast<std::size_t>(i)] = n == 1 ? a : a + (b - a) * i / (n - 1);
+  return v;
+}
+
+}  // namespace
+
+bool CaseSpec::in_tier(const std::string& tier) const {
+  return std::find(tiers.begin(), tiers.end(), tier) != tiers.end();
+}
+
+fs::path source_root() {
+  if (const char* env = std::getenv("CUTBENCH_ROOT"); env && *env) return fs::path(env);
+#ifdef CUTBENCH_SOURCE_DIR_FW
+  return fs::path(CUTBENCH_SOURCE_DIR_FW);
+#else
+  return fs::current_path();
+#endif
+}
+
+std::vector<fs::path> discover_case_files(const fs::path& root) {
+  std::vector<fs::path> files;
+  for (const auto& paper : kPaperIds) {
+    const fs::path dir = root / "benchmarks" / paper;
+    if (!fs::is_directory(dir)) continue;
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.is_regular_file() && e.path().extension() == ".toml") files.push_back(e.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+fs::path resolve_case(const std::string& id_or_path, const fs::path& root) {
+  fs::path p(id_or_path);
+  if (p.extension() == ".toml") {
+    if (!fs::exists(p)) throw InputError("case", "case file not found: " + id_or_path);
+    return p;
+  }
+  const auto slash = id_or_path.find('/');
+  if (slash == std::string::npos) {
+    throw InputError("case", "'" + id_or_path + "' is neither a case id like nairn2015/fig08 nor a .toml file");
+  }
+  const std::string paper = id_or_path.substr(0, slash);
+  if (std::find(kPaperIds.begin(), kPaperIds.end(), paper) == kPaperIds.end()) {
+    throw InputError("case", "unknown paper '" + paper + "' in '" + id_or_path + "'");
+  }
+  fs::path file = root / "benchmarks" / (id_or_path + ".toml");
+  if (!fs::exists(file)) throw InputError("case", "no case file for '" + id_or_path + "' (" + file.string() + ")");
+  return file;
+}
+
+Inventory load_inventory(const fs::path& root, const std::string& paper) {
+  Inventory inv;
+  inv.paper = paper;
+  const fs::path file = root / "reference_data" / paper / "inventory";
+  std::ifstream in(file);
+  if (!in) throw InputError("inventory", "missing inventory file " + file.string());
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto b = line.find_first_not_of(" \t");
+    if (b == std::string::npos) continue;
+    if (line[b] == '#') {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) {
+        std::string key = line.substr(b + 1, colon - b - 1);
+        key.erase(0, key.find_first_not_of(' '));
+        key.erase(key.find_last_not_of(' ') + 1);
+        std::string value = line.substr(colon + 1);
+        value.erase(0, value.find_first_not_of(' '));
+        if (!key.empty() && key.find(' ') == std::string::npos) inv.meta[key] = value;
+      }
+      continue;
+    }
+    std::istringstream is(line);
+    InventoryItem item;
+    is >> item.id >> item.kind >> item.number;
+    std::getline(is, item.title);
+    item.title.erase(0, item.title.find_first_not_of(" \t"));
+    inv.items.push_back(item);
+  }
+  return inv;
+}
+
+CaseSpec load_case(const fs::path& file, const std::string& tier) {
+  if (!kTiers.count(tier)) throw InputError("tier", "unknown tier '" + tier + "' (expected quick or full)");
+  toml::table tbl;
+  try {
+    tbl = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << file.string() << ":" << e.source().begin.line << ": " << e.description();
+    throw InputError("case file", os.str());
+  }
+  const json doc = toml_to_json(tbl);
+  check_keys(doc, kCaseKeys, "");
+
+  CaseSpec c;
+  c.file = file;
+  c.id = get_string(doc, "id", "");
+  c.paper = get_string(doc, "paper", "");
+  c.item = get_string(doc, "item", "");
+  c.title = get_string(doc, "title", "");
+  c.requirement = get_string(doc, "requirement", "");
+  c.status = get_string(doc, "status", "");
+  c.reason = get_string(doc, "reason", "", false);
+  c.solver = get_string(doc, "solver", "");
+  c.models = get_strings(doc, "models", "");
+  c.tiers = get_strings(doc, "tiers", "");
+  c.assumptions = get_strings(doc, "assumptions", "");
+
+  if (std::find(kPaperIds.begin(), kPaperIds.end(), c.paper) == kPaperIds.end()) {
+    throw InputError("paper", "unknown paper '" + c.paper + "'");
+  }
+  const std::string expected_id = file.parent_path().filename().string() + "/" + file.stem().string();
+  if (c.id != expected_id) {
+    throw InputError("id", "'" + c.id + "' does not match the file location (expected '" + expected_id + "')");
+  }
+  if (c.id.rfind(c.paper + "/", 0) != 0) throw InputError("id", "must start with the paper id '" + c.paper + "/'");
+  c.item_id = c.id.substr(c.paper.size() + 1);
+  if (!kStatuses.count(c.status)) {
+    throw InputError("status", "'" + c.status + "' (expected implemented or not_implemented)");
+  }
+  if (c.status == "not_implemented" && c.reason.empty()) {
+    throw InputError("reason", "a not_implemented case must say what is missing");
+  }
+  if (c.tiers.empty()) throw InputError("tiers", "at least one tier (quick, full)");
+  for (const auto& t : c.tiers) {
+    if (!kTiers.count(t)) throw InputError("tiers", "unknown tier '" + t + "' (expected quick or full)");
+  }
+
+  // Global parameters and tier overrides (raw JSON, resolved per series against the model).
+  json global = doc.value("params", json::object());
+  if (doc.contains("tier")) {
+    const json& tiers = doc["tier"];
+    check_keys(tiers, kTiers, "tier");
+    if (tiers.contains(tier)) {
+      check_keys(tiers[tier], {"params"}, "tier." + tier);
+      for (const auto& [k, v] : tiers[tier].value("params", json::object()).items()) global[k] = v;
+    }
+  }
+  std::set<std::string> used_globals;
+
+  const fs::path root = source_root();
+  auto& models = ModelRegistry::instance();
+  auto& solvers = SolverRegistry::instance();
+
+  if (doc.contains("series")) {
+    if (!doc["series"].is_array()) throw InputError("series", "expected an array of tables [[series]]");
+    std::size_t idx = 0;
+    for (const auto& s : doc["series"]) {
+      const std::string where = "series[" + std::to_string(idx++) + "]";
+      check_keys(s, kSeriesKeys, where);
+      SeriesSpec ss;
+      ss.name = get_string(s, "name", where + ".");
+      ss.model = get_string(s, "model", where + ".");
+      const std::string sw = "series '" + ss.name + "'.";
+      const std::vector<ParamSpec>* pspecs = nullptr;
+      if (const auto* m = models.find(ss.model)) {
+        pspecs = &m->params;
+      } else if (const auto* sv = solvers.find(ss.model)) {
+        pspecs = &sv->params;
+        ss.solver = true;
+      } else if (c.implemented()) {
+        throw InputError(sw + "model", "unknown model or solver '" + ss.model + "'");
+      }
+      json params = s.value("params", json::object());
+      if (s.contains("tier")) {
+        check_keys(s["tier"], kTiers, sw + "tier");
+        if (s["tier"].contains(tier)) {
+          for (const auto& [k, v] : s["tier"][tier].items()) params[k] = v;
+        }
+      }
+      if (!pspecs) {  // not implemented: keep the declaration, do not resolve
+        c.series.push_back(ss);
+        continue;
+      }
+      for (const auto& [k, v] : global.items()) {
+        if (find_param(*pspecs, k) && !params.contains(k)) {
+          params[k] = v;
+          used_globals.insert(k);
+        } else if (find_param(*pspecs, k)) {
+          used_globals.insert(k);
+        }
+      }
+      for (const auto& [k, v] : params.items()) {
+        const ParamSpec* p = find_param(*pspecs, k);
+        if (!p) throw InputError(sw + "params." + k, "unknown parameter of '" + ss.model + "'");
+        ss.params[k] = quantity(v, p->dim, sw + "params." + k);
+      }
+      auto sweep_values = [&](const json& sweep, const ParamSpec& p, const std::string& f) {
+        std::vector<double> vals;
+        if (sweep.contains("values")) {
+          for (const auto& v : sweep["values"]) vals.push_back(quantity(v, p.dim, f + ".values"));
+        } else if (sweep.contains("from") && sweep.contains("to") && sweep.contains("n")) {
+          const double a = quantity(sweep["from"], p.dim, f + ".from");
+          const double b = quantity(sweep["to"], p.dim, f + ".to");
+          const int n = sweep["n"].get<int>();
+          if (n < 1 || n > 100000) throw InputError(f + ".n", "expected 1..100000 points");
+          vals = linspace(a, b, n);
+        } else {
+          throw InputError(f, "give either values = [...] or from, to, n");
+        }
+        if (vals.empty()) throw InputError(f, "sweep has no points");
+        return vals;
+      };
+      if (s.contains("sweep")) {
+        const json& sweep = s["sweep"];
+        check_keys(sweep, {"param", "values", "from", "to", "n"}, sw + "sweep");
+        SweepSpec sp;
+        sp.param = get_string(sweep, "param", sw + "sweep.");
+        const ParamSpec* p = find_param(*pspecs, sp.param);
+        if (!p) throw InputError(sw + "sweep.param", "unknown parameter '" + sp.param + "' of '" + ss.model + "'");
+        sp.values = sweep_values(sweep, *p, sw + "sweep");
+        ss.sweep = sp;
+      }
+      if (s.contains("zip")) {
+        if (!ss.sweep) throw InputError(sw + "zip", "zip needs a sweep to zip with");
+        for (const auto& [k, v] : s["zip"].items()) {
+          const ParamSpec* p = find_param(*pspecs, k);
+          if (!p) throw InputError(sw + "zip." + k, "unknown parameter of '" + ss.model + "'");
+          std::vector<double> vals;
+          for (const auto& x : v) vals.push_back(quantity(x, p->dim, sw + "zip." + k));
+          if (vals.size() != ss.sweep->values.size()) {
+            throw InputError(sw + "zip." + k, "has " + std::to_string(vals.size()) + " values, sweep has " +
+                                                  std::to_string(ss.sweep->values.size()));
+          }
+          ss.zip[k] = vals;
+        }
+      }
+      if (s.contains("rows")) {
+        if (ss.sweep) throw InputError(sw + "rows", "use either sweep or rows, not both");
+        const json& rows = s["rows"];
+        check_keys(rows, {"file", "params"}, sw + "rows");
+        RowsSpec rs;
+        rs.file = root / "reference_data" / c.paper / get_string(rows, "file", sw + "rows.");
+        ReferenceTable t = load_reference(rs.file, sw + "rows.file");
+        for (const auto& [k, v] : rows.value("params", json::object()).items()) {
+          if (!find_param(*pspecs, k)) throw InputError(sw + "rows.params." + k, "unknown parameter of '" + ss.model + "'");
+          const auto col = v.get<std::string>();
+          const auto& column = t.column(col);
+          const ParamSpec* p = find_param(*pspecs, k);
+          if (column.unit.empty()) throw InputError(sw + "rows.params." + k, "column '" + col + "' is text");
+          const UnitInfo u = unit_info(column.unit, sw + "rows.params." + k);
+          if (!same_dimension(u.dim, p->dim)) {
+            throw InputError(sw + "rows.params." + k, "column '" + col + "' is in " + column.unit +
+                                                         ", parameter needs a " + dim_name(p->dim));
+          }
+          rs.params[k] = col;
+        }
+        ss.rows = rs;
+      }
+      c.series.push_back(std::move(ss));
+    }
+  }
+  if (c.implemented()) {
+    for (const auto& [k, v] : global.items()) {
+      if (!used_globals.count(k)) throw InputError("params." + k, "no series model takes this parameter");
+    }
+  }
+
+  if (doc.contains("checks")) {
+    std::size_t idx = 0;
+    std::set<std::string> keys;
+    for (const auto& ch : doc["checks"]) {
+      const std::string where = "checks[" + std::to_string(idx++) + "]";
+      check_keys(ch, kCheckKeys, where);
+      CheckSpec cs;
+      cs.key = get_string(ch, "key", where + ".");
+      const std::string cw = "check '" + cs.key + "'.";
+      if (!keys.insert(cs.key).second) throw InputError(cw + "key", "duplicate check key");
+      cs.kind = get_string(ch, "kind", cw);
+      if (!kKinds.count(cs.kind)) throw InputError(cw + "kind", "'" + cs.kind + "' (expected verification, reproduction or validation)");
+      cs.metric = get_string(ch, "metric", cw);
+      if (!kMetrics.count(cs.metric)) {
+        throw InputError(cw + "metric", "'" + cs.metric + "' (expected relative, absolute, within, curve_max_norm, windowed_mean or feature)");
+      }
+      cs.units = get_string(ch, "units", cw);
+      unit_info(cs.units, cw + "units");
+      cs.source = get_string(ch, "source", cw);
+      cs.known_failure = get_string(ch, "known_failure", cw, false);
+      cs.description = get_string(ch, "description", cw, false);
+      if (!ch.contains("value")) throw InputError(cw + "value", "missing");
+      if (!ch.contains("reference")) throw InputError(cw + "reference", "missing");
+      cs.value = ch["value"];
+      cs.reference = ch["reference"];
+      cs.tolerance = ch.value("tolerance", json());
+      // Reference files must exist now (a missing file is bad input, not a NOT RUN).
+      if (cs.reference.is_object() && cs.reference.contains("file")) {
+        load_reference(root / "reference_data" / c.paper / cs.reference["file"].get<std::string>(), cw + "reference.file");
+      }
+      c.checks.push_back(std::move(cs));
+    }
+  }
+  if (doc.contains("plots")) c.plots = doc["plots"];
+  if (doc.contains("tables")) c.tables = doc["tables"];
+  return c;
+}
+
+}  // namespace cutbench::framework

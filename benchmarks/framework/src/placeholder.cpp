@@ -1,3 +1,0 @@
-namespace cutbench::framework {
-int placeholder() { return 0; }
-}

@@ -1,0 +1,207 @@
+#include "cutbench/framework/runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "cutbench/analytic/models.hpp"
+#include "cutbench/common/errors.hpp"
+#ifdef CUTBENCH_HAVE_MPM
+#include "cutbench/mpm/register.hpp"
+#endif
+#ifdef CUTBENCH_HAVE_SPH
+#include "cutbench/sph/register.hpp"
+#endif
+#ifdef CUTBENCH_HAVE_LIMIT
+#include "cutbench/limit/register.hpp"
+#endif
+#ifdef CUTBENCH_HAVE_EFG
+#include "cutbench/efg/register.hpp"
+#endif
+
+namespace cutbench::framework {
+
+void register_all() {
+  analytic::register_models(ModelRegistry::instance());
+#ifdef CUTBENCH_HAVE_MPM
+  mpm::register_solvers(SolverRegistry::instance());
+#endif
+#ifdef CUTBENCH_HAVE_SPH
+  sph::register_solvers(SolverRegistry::instance());
+#endif
+#ifdef CUTBENCH_HAVE_LIMIT
+  limit::register_solvers(SolverRegistry::instance());
+#endif
+#ifdef CUTBENCH_HAVE_EFG
+  efg::register_solvers(SolverRegistry::instance());
+#endif
+}
+
+namespace {
+
+const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::string& name) {
+  for (const auto& p : params) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
+// Points of a series: each a full parameter set (SI).
+std::vector<Values> series_points(const SeriesSpec& s, ReferenceCache& refs) {
+  std::vector<Values> pts;
+  if (s.sweep) {
+    for (std::size_t i = 0; i < s.sweep->values.size(); ++i) {
+      Values p = s.params;
+      p[s.sweep->param] = s.sweep->values[i];
+      for (const auto& [k, v] : s.zip) p[k] = v[i];
+      pts.push_back(p);
+    }
+  } else if (s.rows) {
+    const ReferenceTable& t = refs.get(s.rows->file, "series '" + s.name + "'.rows.file");
+    for (std::size_t r = 0; r < t.rows; ++r) {
+      Values p = s.params;
+      for (const auto& [param, col] : s.rows->params) p[param] = t.si_value(col, r);
+      pts.push_back(p);
+    }
+  } else {
+    pts.push_back(s.params);
+  }
+  return pts;
+}
+
+std::vector<std::string> varied_params(const SeriesSpec& s) {
+  std::vector<std::string> names;
+  if (s.sweep) {
+    names.push_back(s.sweep->param);
+    for (const auto& [k, v] : s.zip) names.push_back(k);
+  } else if (s.rows) {
+    for (const auto& [k, v] : s.rows->params) names.push_back(k);
+  }
+  return names;
+}
+
+SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const ProgressFn& progress,
+                        double frac0, double frac1) {
+  SeriesResult out;
+  out.name = s.name;
+  out.model = s.model;
+  out.solver = s.solver;
+  out.table.name = s.name;
+  const auto points = series_points(s, refs);
+  const auto varied = varied_params(s);
+
+  if (!s.solver) {
+    const ModelSpec& m = ModelRegistry::instance().get(s.model);
+    for (const auto& v : varied) {
+      std::vector<double> col;
+      for (const auto& p : points) col.push_back(p.at(v));
+      out.table.add(v, si_unit(find_param(m.params, v)->dim), col);
+    }
+    std::map<std::string, std::vector<double>> outs;
+    std::vector<double> applicable;
+    for (const auto& p : points) {
+      ModelResult r = evaluate_model(m, p);
+      for (const auto& o : m.outputs) {
+        auto it = r.outputs.find(o.name);
+        outs[o.name].push_back(it == r.outputs.end() ? nan_value() : it->second);
+      }
+      applicable.push_back(r.applicable ? 1.0 : 0.0);
+      if (!r.applicable && !r.note.empty() &&
+          std::find(out.notes.begin(), out.notes.end(), r.note) == out.notes.end()) {
+        out.notes.push_back(r.note);
+      }
+    }
+    for (const auto& o : m.outputs) {
+      if (std::find(varied.begin(), varied.end(), o.name) == varied.end()) {
+        out.table.add(o.name, si_unit(o.dim), outs[o.name]);
+      }
+    }
+    out.table.add("applicable", "1", applicable);
+    return out;
+  }
+
+  const SolverSpec* sv = SolverRegistry::instance().find(s.model);
+  for (const auto& v : varied) {
+    std::vector<double> col;
+    for (const auto& p : points) col.push_back(p.at(v));
+    out.table.add(v, si_unit(find_param(sv->params, v)->dim), col);
+  }
+  std::map<std::string, std::vector<double>> scal;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Values params = validate_params(ModelSpec{sv->name, "", "", sv->params, {}, {}}, points[k]);
+    const double a = frac0 + (frac1 - frac0) * static_cast<double>(k) / static_cast<double>(points.size());
+    const double b = frac0 + (frac1 - frac0) * static_cast<double>(k + 1) / static_cast<double>(points.size());
+    ProgressFn inner = [&](double f, const std::string& msg) {
+      if (progress) progress(a + (b - a) * f, s.name + " point " + std::to_string(k + 1) + "/" +
+                                                  std::to_string(points.size()) + ": " + msg);
+    };
+    RunOutput run = sv->run(params, inner);
+    for (const auto& o : sv->scalars) {
+      auto it = run.scalars.find(o.name);
+      scal[o.name].push_back(it == run.scalars.end() ? nan_value() : it->second);
+    }
+    for (const auto& n : run.notes) {
+      if (std::find(out.notes.begin(), out.notes.end(), n) == out.notes.end()) out.notes.push_back(n);
+    }
+    out.runs.push_back(std::move(run));
+  }
+  for (const auto& o : sv->scalars) out.table.add(o.name, si_unit(o.dim), scal[o.name]);
+  return out;
+}
+
+}  // namespace
+
+std::string case_status(const CaseSpec& spec, const std::vector<CheckRecord>& checks) {
+  if (!spec.implemented()) return "NOT IMPLEMENTED";
+  bool any_fail = false, any_pass = false, any_not_run = false;
+  for (const auto& c : checks) {
+    if (c.status == "FAIL") any_fail = true;
+    if (c.status == "PASS") any_pass = true;
+    if (c.status == "NOT RUN") any_not_run = true;
+  }
+  if (any_fail) return "FAIL";
+  if (any_not_run && !any_pass) return "NOT RUN";
+  if (checks.empty()) return "NOT RUN";
+  return "PASS";
+}
+
+CaseResult run_case(const CaseSpec& spec, const std::string& tier, const ProgressFn& progress) {
+  CaseResult r;
+  r.case_id = spec.id;
+  r.tier = tier;
+  r.date = utc_now_iso();
+#ifdef _OPENMP
+  r.threads = omp_get_max_threads();
+#endif
+  const auto t0 = std::chrono::steady_clock::now();
+  ReferenceCache refs;
+  if (spec.implemented()) {
+    const std::size_t n = spec.series.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double f0 = static_cast<double>(i) / static_cast<double>(n);
+      const double f1 = static_cast<double>(i + 1) / static_cast<double>(n);
+      try {
+        r.series.push_back(run_series(spec.series[i], refs, progress, f0, f1));
+      } catch (const InputError&) {
+        throw;
+      } catch (const std::exception& e) {
+        SeriesResult failed;
+        failed.name = spec.series[i].name;
+        failed.model = spec.series[i].model;
+        failed.error = e.what();
+        r.series.push_back(std::move(failed));
+      }
+    }
+  }
+  r.checks = evaluate_checks(spec, r.series, refs);
+  r.status = case_status(spec, r.checks);
+  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace cutbench::framework

@@ -26,7 +26,7 @@ const std::set<std::string> kCaseKeys = {
     "id",     "paper",  "item",   "title",       "requirement", "status", "reason",
     "solver", "models", "tiers",  "assumptions", "params",      "tier",   "series",
     "checks", "plots",  "tables"};
-const std::set<std::string> kSeriesKeys = {"name", "model", "params", "sweep", "rows", "zip", "tier"};
+const std::set<std::string> kSeriesKeys = {"name", "model", "params", "sweep", "rows", "zip", "tier", "pending"};
 const std::set<std::string> kCheckKeys = {"key",    "kind",      "metric",        "value",
                                           "reference", "tolerance", "units",      "source",
                                           "known_failure", "description"};
@@ -245,15 +245,17 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       ss.name = get_string(s, "name", where + ".");
       ss.model = get_string(s, "model", where + ".");
       const std::string sw = "series '" + ss.name + "'.";
+      ss.pending = get_string(s, "pending", sw, false);
       const std::vector<ParamSpec>* pspecs = nullptr;
       if (const auto* m = models.find(ss.model)) {
         pspecs = &m->params;
       } else if (const auto* sv = solvers.find(ss.model)) {
         pspecs = &sv->params;
         ss.solver = true;
-      } else if (c.implemented()) {
+      } else if (c.implemented() && ss.pending.empty()) {
         throw InputError(sw + "model", "unknown model or solver '" + ss.model + "'");
       }
+      if (!ss.pending.empty()) pspecs = nullptr;  // declared only
       json params = s.value("params", json::object());
       if (s.contains("tier")) {
         check_keys(s["tier"], kTiers, sw + "tier");

@@ -34,6 +34,7 @@ struct SeriesSpec {
   std::string name;
   std::string model;   // analytic model or solver name
   bool solver = false; // true when `model` names a registered solver
+  std::string pending; // non-empty: declared but not computable yet (the solver is missing)
   Values params;       // SI, after tier overrides
   std::optional<SweepSpec> sweep;
   std::optional<RowsSpec> rows;

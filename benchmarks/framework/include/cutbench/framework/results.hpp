@@ -17,6 +17,7 @@ struct SeriesResult {
   std::vector<std::string> notes;
   std::vector<RunOutput> runs;   // solver runs, one per point (histories and snapshots)
   std::string error;             // non-empty if the series could not be computed
+  std::string pending;           // non-empty: declared, not implemented yet
 };
 
 struct CheckRecord {

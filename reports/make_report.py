@@ -1,0 +1,331 @@
+#!/usr/bin/python3
+"""cutbench report: a static HTML site from a results directory.
+
+Reads <results>/manifest.json (written by `cutbench report`), each case's HDF5 file and the
+reference CSVs, draws every figure a case declares ([[plots]] in its TOML file) with the paper's
+numbers overlaid, and lists every check record (paper | cutbench | error | tolerance | status).
+Run with Debian's /usr/bin/python3 (h5py, matplotlib, numpy).
+"""
+import argparse
+import csv
+import html
+import json
+import math
+import os
+import sys
+
+os.environ.setdefault("MPLBACKEND", "Agg")
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+matplotlib.rcParams["svg.hashsalt"] = "cutbench"
+matplotlib.rcParams["path.simplify"] = False
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+try:
+    import h5py  # noqa: E402
+except ImportError:  # pragma: no cover
+    sys.exit("make_report.py: h5py missing; run scripts/setup-debian.sh and use /usr/bin/python3")
+
+UNITS = {  # symbol -> (factor to SI, offset)
+    "1": (1, 0), "-": (1, 0), "%": (0.01, 0), "m": (1, 0), "mm": (1e-3, 0), "um": (1e-6, 0),
+    "rad": (1, 0), "deg": (math.pi / 180, 0), "Pa": (1, 0), "kPa": (1e3, 0), "MPa": (1e6, 0),
+    "GPa": (1e9, 0), "N": (1, 0), "kN": (1e3, 0), "N/m": (1, 0), "N/mm": (1e3, 0), "J/m^2": (1, 0),
+    "s": (1, 0), "ms": (1e-3, 0), "us": (1e-6, 0), "m/s": (1, 0), "m/min": (1 / 60, 0),
+    "mm/min": (1e-3 / 60, 0), "K": (1, 0), "kg/m^3": (1, 0), "g/cm^3": (1e3, 0), "1/m": (1, 0),
+    "N m/m": (1, 0), "Pa m^0.5": (1, 0), "MPa m^0.5": (1e6, 0),
+}
+STATUS_CLASS = {"PASS": "pass", "FAIL": "fail", "NOT RUN": "notrun", "NOT IMPLEMENTED": "ni"}
+STYLES = {"solid": dict(ls="-"), "dashed": dict(ls="--"), "dotted": dict(ls=":"),
+          "markers": dict(ls="none", marker="o", ms=5, mfc="none"),
+          "line+markers": dict(ls="-", marker="s", ms=4)}
+
+
+def convert(values, from_unit, to_unit):
+    """Convert an array between units (both in UNITS)."""
+    if to_unit is None or from_unit == to_unit:
+        return values
+    fa, oa = UNITS.get(from_unit, (1, 0))
+    fb, ob = UNITS.get(to_unit, (1, 0))
+    return (np.asarray(values) * fa + oa - ob) / fb
+
+
+def read_reference(path):
+    meta, header, rows = {}, None, []
+    with open(path, newline="") as f:
+        for line in f:
+            s = line.strip()
+            if not s:
+                continue
+            if s.startswith("#"):
+                if ":" in s:
+                    k, v = s[1:].split(":", 1)
+                    k = k.strip()
+                    if " " not in k:
+                        meta[k] = (meta.get(k, "") + " " + v.strip()).strip()
+                continue
+            cells = next(csv.reader([s]))
+            if header is None:
+                header = [c.strip() for c in cells]
+            else:
+                rows.append([c.strip() for c in cells])
+    cols = {}
+    for i, h in enumerate(header or []):
+        name, unit = (h.split("[", 1)[0].strip(), h.split("[", 1)[1].rstrip("]").strip()) if "[" in h else (h, None)
+        cols[name] = (unit, [r[i] if i < len(r) else "" for r in rows])
+    return meta, cols
+
+
+def ref_xy(root, paper, line):
+    meta, cols = read_reference(os.path.join(root, "reference_data", paper, line["reference"]))
+    where = line.get("where", {})
+    n = len(next(iter(cols.values()))[1]) if cols else 0
+    keep = [i for i in range(n)
+            if all(cols[k][1][i] == str(v) or _num_eq(cols[k][1][i], v) for k, v in where.items())]
+    xu, xs = cols[line["x"]]
+    yu, ys = cols[line["y"]]
+    x = np.array([float(xs[i]) if xs[i] else np.nan for i in keep])
+    y = np.array([float(ys[i]) if ys[i] else np.nan for i in keep])
+    x = convert(convert(x, xu, "1" if xu is None else xu), xu, line.get("x_unit", xu))
+    y = convert(y, yu, line.get("y_unit", yu))
+    return x, y
+
+
+def _num_eq(cell, v):
+    try:
+        return abs(float(cell) - float(v)) <= 1e-12 * max(1.0, abs(float(v)))
+    except (TypeError, ValueError):
+        return False
+
+
+def h5_xy(h5, line):
+    g = h5["series"][line["series"]]
+    if "run" in line:
+        g = g["point_%d" % int(line["run"])][line.get("table", "forces")]
+    x = g[line["x"]][()]
+    y = g[line["y"]][()]
+    xu = g[line["x"]].attrs.get("units", "1")
+    yu = g[line["y"]].attrs.get("units", "1")
+    xu = xu.decode() if isinstance(xu, bytes) else xu
+    yu = yu.decode() if isinstance(yu, bytes) else yu
+    return convert(x, xu, line.get("x_unit")), convert(y, yu, line.get("y_unit")) * line.get("y_scale", 1.0)
+
+
+def draw_plot(case, plot, root, outdir):
+    """Draw one [[plots]] entry; returns (png, svg) names or raises."""
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=110)
+    h5 = h5py.File(case["h5"], "r") if case.get("h5") else None
+    drawn = 0
+    try:
+        for line in plot.get("lines", []):
+            style = dict(STYLES.get(line.get("style", "solid"), STYLES["solid"]))
+            if "color" in line:
+                style["color"] = line["color"]
+            try:
+                if "reference" in line:
+                    x, y = ref_xy(root, case["paper"], line)
+                    style.setdefault("color", "k")
+                elif h5 is not None:
+                    x, y = h5_xy(h5, line)
+                else:
+                    continue
+            except KeyError:
+                continue
+            ax.plot(x, y, label=line.get("label"), **style)
+            drawn += 1
+        if plot.get("kind") == "snapshot" and h5 is not None:
+            g = h5["series"][plot["series"]]["point_%d" % int(plot.get("run", 0))]["snapshots"]
+            keys = sorted(g.keys(), key=int)
+            snap = g[keys[int(plot.get("snapshot", -1))]]
+            field = plot.get("field")
+            c = snap[field][()] if field in snap else None
+            sc = ax.scatter(snap["x"][()] * 1e3, snap["y"][()] * 1e3, c=c, s=plot.get("size", 2),
+                            cmap=plot.get("cmap", "Greys"), marker="s", linewidths=0)
+            if c is not None:
+                fig.colorbar(sc, ax=ax, label=field)
+            ax.set_aspect("equal")
+            drawn += 1
+    finally:
+        if h5 is not None:
+            h5.close()
+    if drawn == 0:
+        plt.close(fig)
+        return None
+    ax.set_xlabel(plot.get("xlabel", ""))
+    ax.set_ylabel(plot.get("ylabel", ""))
+    if plot.get("xscale"):
+        ax.set_xscale(plot["xscale"])
+    if plot.get("yscale"):
+        ax.set_yscale(plot["yscale"])
+    if plot.get("xlim"):
+        ax.set_xlim(*plot["xlim"])
+    if plot.get("ylim"):
+        ax.set_ylim(*plot["ylim"])
+    ax.set_title(plot.get("title", ""), fontsize=10)
+    ax.grid(True, alpha=0.3)
+    if any(l.get("label") for l in plot.get("lines", [])):
+        ax.legend(fontsize=7, loc=plot.get("legend", "best"))
+    fig.tight_layout()
+    base = "%s_%s_%s" % (case["paper"], case["item_id"], plot.get("name", "plot"))
+    png, svg = base + ".png", base + ".svg"
+    fig.savefig(os.path.join(outdir, "figures", png), metadata={"Software": None})
+    fig.savefig(os.path.join(outdir, "figures", svg), metadata={"Date": None, "Creator": None})
+    plt.close(fig)
+    return png, svg
+
+
+def fmt(v):
+    if v is None:
+        return "—"
+    if isinstance(v, list):
+        return "[" + ", ".join(fmt(x) for x in v) + "]"
+    if isinstance(v, float):
+        if v == 0:
+            return "0"
+        a = abs(v)
+        return ("%.4g" % v) if 1e-3 <= a < 1e5 else ("%.3e" % v)
+    return html.escape(str(v))
+
+
+def badge(status):
+    return '<span class="badge %s">%s</span>' % (STATUS_CLASS.get(status, "notrun"), html.escape(status))
+
+
+CSS = """
+body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:0;color:#1d2330;background:#f6f7f9}
+header{background:#1d2330;color:#fff;padding:14px 28px}header a{color:#cfe3ff}
+main{padding:18px 28px;max-width:1200px}
+h1{font-size:22px;margin:0}h2{font-size:18px;border-bottom:1px solid #d5d9e0;padding-bottom:4px}
+h3{font-size:15px;margin:0 0 6px}
+table{border-collapse:collapse;font-size:13px;margin:8px 0;background:#fff}
+td,th{border:1px solid #d5d9e0;padding:4px 8px;text-align:left;vertical-align:top}
+th{background:#eef1f5}
+.badge{display:inline-block;padding:1px 7px;border-radius:9px;font-size:12px;font-weight:600;white-space:nowrap}
+.pass{background:#d8f3dc;color:#1b5e20}.fail{background:#ffd6d6;color:#8b0000}
+.notrun{background:#fff1c1;color:#7a5b00}.ni{background:#e4e6eb;color:#4a4f5c}
+.case{background:#fff;border:1px solid #d5d9e0;border-radius:6px;padding:12px 16px;margin:14px 0}
+.figs img{max-width:560px;width:100%;border:1px solid #e1e4ea;margin:4px 8px 4px 0}
+.small{font-size:12px;color:#5b6272}.note{font-size:12px;color:#7a3e00}
+"""
+
+
+def page(title, body, root_rel=""):
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>%s</title>"
+            "<style>%s</style></head><body><header><h1><a href=\"%sindex.html\">cutbench</a> — %s</h1>"
+            "</header><main>%s</main></body></html>\n") % (html.escape(title), CSS, root_rel,
+                                                           html.escape(title), body)
+
+
+def write(path, text):
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--root", required=True)
+    ap.add_argument("--results", required=True)
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args()
+    with open(os.path.join(a.results, "manifest.json")) as f:
+        man = json.load(f)
+    os.makedirs(os.path.join(a.out, "figures"), exist_ok=True)
+    papers = man["papers"]
+    by_paper = {}
+    for c in man["cases"]:
+        by_paper.setdefault(c["paper"], []).append(c)
+
+    summary_rows = []
+    totals = {"PASS": 0, "FAIL": 0, "NOT RUN": 0, "NOT IMPLEMENTED": 0}
+    for pid in papers:
+        cases = by_paper.get(pid, [])
+        counts = {k: 0 for k in totals}
+        body = []
+        meta = papers[pid].get("meta", {})
+        body.append("<p>%s<br><span class=\"small\">DOI: %s</span></p>" % (
+            html.escape(meta.get("citation", pid)), html.escape(meta.get("doi", "unknown"))))
+        for c in cases:
+            counts[c["status"]] = counts.get(c["status"], 0) + 1
+            last = c.get("last_run") or {}
+            parts = ['<div class="case" id="%s"><h3>%s — %s %s</h3>' % (
+                html.escape(c["item_id"]), html.escape(c["item"]), html.escape(c["title"]), badge(c["status"]))]
+            parts.append('<p class="small">case <code>%s</code> · solver %s · models %s · tiers %s%s</p>' % (
+                html.escape(c["case"]), html.escape(c["solver"]), html.escape(", ".join(c["models"])),
+                html.escape(", ".join(c["tiers"])),
+                (" · last run %s (%s tier, %.2f s)" % (last.get("date"), last.get("tier"), last.get("wall_time_s", 0))
+                 if last else "")))
+            if c.get("requirement"):
+                parts.append("<p>%s</p>" % html.escape(c["requirement"]))
+            if not c["implemented"]:
+                parts.append('<p class="note">Not implemented: %s</p>' % html.escape(c.get("reason", "")))
+            for asm in c.get("assumptions", []):
+                parts.append('<p class="note">Assumption: %s</p>' % html.escape(asm))
+            for n in last.get("notes", []):
+                parts.append('<p class="note">Note: %s</p>' % html.escape(n))
+            figs = []
+            if c.get("h5") or any(all("reference" in l for l in p.get("lines", [])) for p in c.get("plots", [])):
+                for p in c.get("plots", []):
+                    try:
+                        r = draw_plot(c, p, a.root, a.out)
+                    except Exception as e:  # a broken plot must not hide the rest of the report
+                        parts.append('<p class="note">Plot %s failed: %s</p>' % (html.escape(p.get("name", "")),
+                                                                                  html.escape(str(e))))
+                        continue
+                    if r:
+                        figs.append('<a href="figures/%s"><img src="figures/%s" alt="%s"></a>' % (
+                            r[1], r[0], html.escape(p.get("title", ""))))
+            if figs:
+                parts.append('<div class="figs">%s</div>' % "".join(figs))
+            checks = last.get("checks") or []
+            if checks:
+                parts.append("<table><tr><th>check</th><th>kind</th><th>paper / reference</th><th>cutbench</th>"
+                             "<th>error</th><th>tolerance</th><th>units</th><th>status</th><th>source</th></tr>")
+                for ch in checks:
+                    tol = ch.get("tolerance")
+                    tol_s = "range" if ch.get("tolerance_type") == "range" else (
+                        ("%s rel" % fmt(tol)) if ch.get("tolerance_type") == "relative" else fmt(tol))
+                    extra = ""
+                    if ch.get("known_failure"):
+                        extra += '<br><span class="note">known: %s</span>' % html.escape(ch["known_failure"])
+                    if ch.get("message"):
+                        extra += '<br><span class="small">%s</span>' % html.escape(ch["message"])
+                    parts.append("<tr><td>%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td>"
+                                 "<td>%s</td><td>%s</td><td class=\"small\">%s</td></tr>" % (
+                                     html.escape(ch["key"]),
+                                     ('<br><span class="small">%s</span>' % html.escape(ch["description"]))
+                                     if ch.get("description") else "",
+                                     ch["kind"], fmt(ch.get("reference")), fmt(ch.get("value")), fmt(ch.get("error")),
+                                     tol_s, html.escape(ch["units"]), badge(ch["status"]) + extra,
+                                     html.escape(ch.get("source", ""))))
+                parts.append("</table>")
+            elif c["implemented"]:
+                parts.append('<p class="note">Not run yet in this results directory.</p>')
+            parts.append("</div>")
+            body.append("".join(parts))
+        for k in totals:
+            totals[k] += counts.get(k, 0)
+        write(os.path.join(a.out, pid + ".html"), page(pid, "".join(body)))
+        summary_rows.append("<tr><td><a href=\"%s.html\">%s</a></td><td>%s</td><td>%d</td><td>%d</td><td>%d</td>"
+                            "<td>%d</td><td>%d</td></tr>" % (
+                                pid, pid, html.escape(papers[pid].get("meta", {}).get("citation", "")),
+                                len(cases), counts["PASS"], counts["FAIL"], counts["NOT RUN"],
+                                counts["NOT IMPLEMENTED"]))
+    body = ("<p>Software %s · manifest written %s</p>" % (html.escape(man.get("software", "")),
+                                                          html.escape(man.get("date", ""))) +
+            "<table><tr><th>paper</th><th>citation</th><th>cases</th><th>%s</th><th>%s</th><th>%s</th><th>%s</th></tr>"
+            % (badge("PASS"), badge("FAIL"), badge("NOT RUN"), badge("NOT IMPLEMENTED")) +
+            "".join(summary_rows) +
+            "<tr><th>all</th><th></th><th>%d</th><th>%d</th><th>%d</th><th>%d</th><th>%d</th></tr></table>" % (
+                sum(totals.values()), totals["PASS"], totals["FAIL"], totals["NOT RUN"], totals["NOT IMPLEMENTED"]) +
+            "<p class=\"small\">A case is PASS when every check it could evaluate passed (a documented known "
+            "failure stays FAIL in its row); NOT RUN when its inputs are missing; NOT IMPLEMENTED when its "
+            "model or solver does not exist yet.</p>")
+    write(os.path.join(a.out, "index.html"), page("summary", body))
+    print("report: %d cases, %s" % (sum(totals.values()), totals))
+
+
+if __name__ == "__main__":
+    main()

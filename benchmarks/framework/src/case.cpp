@@ -342,6 +342,35 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
         }
         ss.rows = rs;
       }
+      // Validate every point now (ranges, required parameters): bad input fails before output.
+      {
+        ModelSpec check_spec{ss.model, "", "", *pspecs, {}, {}};
+        std::vector<Values> pts;
+        if (ss.sweep) {
+          for (std::size_t i = 0; i < ss.sweep->values.size(); ++i) {
+            Values p = ss.params;
+            p[ss.sweep->param] = ss.sweep->values[i];
+            for (const auto& [k, v] : ss.zip) p[k] = v[i];
+            pts.push_back(p);
+          }
+        } else if (ss.rows) {
+          ReferenceTable t = load_reference(ss.rows->file, sw + "rows.file");
+          for (std::size_t r = 0; r < t.rows; ++r) {
+            Values p = ss.params;
+            for (const auto& [param, col] : ss.rows->params) p[param] = t.si_value(col, r);
+            pts.push_back(p);
+          }
+        } else {
+          pts.push_back(ss.params);
+        }
+        for (const auto& p : pts) {
+          try {
+            validate_params(check_spec, p);
+          } catch (const InputError& e) {
+            throw InputError(sw + "params." + e.field(), std::string(e.what()).substr(e.field().size() + 2));
+          }
+        }
+      }
       c.series.push_back(std::move(ss));
     }
   }

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Bad input must exit with code 2, print one message naming the field, and write nothing.
+set -u
+cutbench="$1"; root="$2"
+fail=0
+expect() {  # expect <description> <field substring> <args...>
+  local what="$1" field="$2"; shift 2
+  local out; out=$(mktemp -d)
+  local msg; msg=$("$cutbench" "$@" --out "$out/results" 2>&1 >/dev/null); local rc=$?
+  if [[ $rc -ne 2 ]]; then echo "FAIL $what: exit $rc (expected 2): $msg"; fail=1;
+  elif [[ "$msg" != *"$field"* ]]; then echo "FAIL $what: message does not name '$field': $msg"; fail=1;
+  elif [[ -n "$(ls -A "$out")" ]]; then echo "FAIL $what: wrote files: $(ls -R "$out")"; fail=1;
+  else echo "ok   $what: $msg"; fi
+  rm -rf "$out"
+}
+expect_eval() {  # model evaluation with bad parameters
+  local what="$1" field="$2"; shift 2
+  local msg; msg=$("$cutbench" eval "$@" 2>&1 >/dev/null); local rc=$?
+  if [[ $rc -ne 2 ]]; then echo "FAIL $what: exit $rc (expected 2): $msg"; fail=1;
+  elif [[ "$msg" != *"$field"* ]]; then echo "FAIL $what: message does not name '$field': $msg"; fail=1;
+  else echo "ok   $what: $msg"; fi
+}
+bad="$root/tests/data/bad_cases"
+expect "unknown key"          "colour"           run "$bad/nairn2015/unknown_key.toml"
+expect "wrong unit"           "params.h"         run "$bad/nairn2015/wrong_unit.toml"
+expect "negative modulus"     "E_prime"          run "$bad/nairn2015/negative_modulus.toml"
+expect "rake >= 90 deg"       "rake"             run "$bad/nairn2015/rake_90.toml"
+expect "negative friction"    "mu"               run "$bad/nairn2015/negative_mu.toml"
+expect "missing reference"    "reference.file"   run "$bad/nairn2015/missing_reference.toml"
+expect "unknown case"         "case"             run nairn2015/fig99
+expect "unknown paper"        "--paper"          run --paper nobody2020
+expect_eval "eval unknown param"  "colour"  atkins_touching colour=3
+expect_eval "eval rake 90"        "rake"    atkins_touching G_c=2000 sigma_y=25MPa h=1mm rake=90deg
+expect_eval "eval negative mu"    "mu"      atkins_touching G_c=2000 sigma_y=25MPa h=1mm rake=30deg mu=-0.1
+expect_eval "eval wrong unit"     "h: wrong unit" atkins_touching G_c=2000 sigma_y=25MPa h=1MPa rake=30deg
+exit $fail

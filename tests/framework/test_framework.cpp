@@ -1,0 +1,231 @@
+#define BOOST_TEST_MODULE framework
+#include <boost/test/unit_test.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/framework/case.hpp"
+#include "cutbench/framework/reference.hpp"
+#include "cutbench/framework/runner.hpp"
+
+namespace fs = std::filesystem;
+using namespace cutbench;
+using namespace cutbench::framework;
+
+namespace {
+struct Registered {
+  Registered() { register_all(); }
+};
+BOOST_TEST_GLOBAL_FIXTURE(Registered);
+
+// A toy model: y = a * x (+ not applicable for x < 0), to exercise series and checks.
+void add_toy() {
+  if (ModelRegistry::instance().find("toy_linear")) return;
+  ModelSpec m;
+  m.name = "toy_linear";
+  m.description = "y = a x";
+  m.source = "test";
+  auto x = param("x", Dim::length, "abscissa");
+  auto a = param("a", Dim::dimensionless, "slope");
+  a.default_value = 2.0;
+  m.params = {x, a};
+  m.outputs = {{"y", Dim::length, "a x"}};
+  m.evaluate = [](const Values& v) {
+    ModelResult r;
+    if (v.at("x") < 0) {
+      r.applicable = false;
+      r.note = "x < 0";
+      return r;
+    }
+    r.outputs["y"] = v.at("a") * v.at("x");
+    return r;
+  };
+  ModelRegistry::instance().add(m);
+}
+
+fs::path write_case(const std::string& name, const std::string& body) {
+  const fs::path dir = fs::temp_directory_path() / "cutbench_test_cases" / "nairn2015";
+  fs::create_directories(dir);
+  const fs::path file = dir / (name + ".toml");
+  std::ofstream(file) << "id = \"nairn2015/" << name << "\"\npaper = \"nairn2015\"\nitem = \"Test\"\n"
+                      << "title = \"t\"\nrequirement = \"r\"\nsolver = \"analytic\"\nmodels = [\"toy_linear\"]\n"
+                      << "tiers = [\"quick\"]\n" << body;
+  return file;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(every_inventory_item_has_a_case_file) {
+  const fs::path root = source_root();
+  std::set<std::string> listed;
+  std::size_t n = 0;
+  for (const auto& paper : kPaperIds) {
+    const Inventory inv = load_inventory(root, paper);
+    BOOST_TEST_CONTEXT("paper " << paper) {
+      BOOST_TEST(!inv.items.empty());
+      BOOST_TEST(inv.meta.count("doi") == 1u);
+      BOOST_TEST(inv.meta.count("citation") == 1u);
+    }
+    for (const auto& item : inv.items) {
+      const fs::path file = root / "benchmarks" / paper / (item.id + ".toml");
+      BOOST_TEST_CONTEXT(paper << "/" << item.id) {
+        BOOST_TEST(fs::exists(file));
+        if (fs::exists(file)) {
+          CaseSpec c = load_case(file, "quick");
+          BOOST_TEST(c.id == paper + "/" + item.id);
+        }
+      }
+      listed.insert(paper + "/" + item.id);
+      ++n;
+    }
+  }
+  BOOST_TEST(n >= 55u);
+  // And no case file outside the inventory.
+  for (const auto& f : discover_case_files(root)) {
+    const std::string id = f.parent_path().filename().string() + "/" + f.stem().string();
+    BOOST_TEST_CONTEXT(id) { BOOST_TEST(listed.count(id) == 1u); }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(every_case_file_loads_in_both_tiers) {
+  for (const auto& f : discover_case_files(source_root())) {
+    BOOST_TEST_CONTEXT(f.string()) {
+      BOOST_CHECK_NO_THROW(load_case(f, "quick"));
+      BOOST_CHECK_NO_THROW(load_case(f, "full"));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(reference_csv_units_and_selection) {
+  const auto t = load_reference(source_root() / "reference_data/figueiredo2024/table1.csv", "test");
+  BOOST_TEST(t.meta.count("doi") == 1u);
+  const auto rows = t.select({{"t1", "0.5"}});
+  BOOST_REQUIRE(rows.size() == 1u);
+  BOOST_TEST(t.si_value("t1", rows[0]) == 0.5e-3, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(t.si_value("phi_exp", rows[0]) == 32.9 * 3.14159265358979323846 / 180, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(t.si_value("k", rows[0]) == 643.9e6, boost::test_tools::tolerance(1e-12));
+  BOOST_CHECK_THROW(t.column("nope"), InputError);
+  BOOST_CHECK_THROW(load_reference(source_root() / "reference_data/none.csv", "f"), InputError);
+}
+
+BOOST_AUTO_TEST_CASE(checks_metrics_and_statuses) {
+  add_toy();
+  const fs::path f = write_case("toy_checks", R"(status = "implemented"
+[[series]]
+name = "line"
+model = "toy_linear"
+params = { a = 3 }
+sweep = { param = "x", from = "0 mm", to = "10 mm", n = 11 }
+
+[[series]]
+name = "neg"
+model = "toy_linear"
+params = { x = "-1 mm" }
+
+[[checks]]
+key = "at"
+kind = "verification"
+metric = "relative"
+value = { series = "line", output = "y", at = { x = "2.5 mm" } }
+reference = "7.5 mm"
+tolerance = 1e-12
+units = "mm"
+source = "exact"
+
+[[checks]]
+key = "abs_fail"
+kind = "verification"
+metric = "absolute"
+value = { series = "line", output = "y", reduce = "max" }
+reference = 29
+tolerance = "0.5 mm"
+units = "mm"
+source = "exact: 30 mm"
+
+[[checks]]
+key = "known"
+kind = "reproduction"
+metric = "absolute"
+value = { series = "line", output = "y", row = 1 }
+reference = 5
+tolerance = 0.1
+units = "mm"
+source = "deliberately wrong"
+known_failure = "documented paper inconsistency"
+
+[[checks]]
+key = "slope"
+kind = "verification"
+metric = "feature"
+value = { series = "line", output = "y", x = "x", feature = "slope" }
+reference = 3
+tolerance = 1e-9
+units = "1"
+source = "exact"
+
+[[checks]]
+key = "range"
+kind = "verification"
+metric = "within"
+value = { ratio = [ { series = "line", output = "y", row = 2 }, { series = "line", output = "x", row = 2 } ] }
+reference = [2.9, 3.1]
+units = "1"
+source = "exact"
+
+[[checks]]
+key = "not_applicable"
+kind = "verification"
+metric = "absolute"
+value = { series = "neg", output = "y" }
+reference = 0
+tolerance = 1
+units = "mm"
+source = "x < 0 has no solution"
+
+[[checks]]
+key = "curve"
+kind = "verification"
+metric = "curve_max_norm"
+value = { series = "line", output = "y", x = "x" }
+reference = { series = "line", output = "y", x = "x" }
+tolerance = { absolute = "1e-9 mm" }
+units = "mm"
+source = "identity"
+)");
+  CaseSpec c = load_case(f, "quick");
+  CaseResult r = run_case(c, "quick", nullptr);
+  std::map<std::string, std::string> st;
+  for (const auto& ch : r.checks) st[ch.key] = ch.status;
+  BOOST_TEST(st["at"] == "PASS");
+  BOOST_TEST(st["abs_fail"] == "FAIL");
+  BOOST_TEST(st["known"] == "FAIL");
+  BOOST_TEST(st["slope"] == "PASS");
+  BOOST_TEST(st["range"] == "PASS");
+  BOOST_TEST(st["not_applicable"] == "NOT RUN");
+  BOOST_TEST(st["curve"] == "PASS");
+  BOOST_TEST(r.status == "FAIL");  // abs_fail is not a known failure
+}
+
+BOOST_AUTO_TEST_CASE(bad_case_files_name_the_field) {
+  add_toy();
+  auto expect_field = [](const std::string& name, const std::string& body, const std::string& field_part) {
+    const fs::path f = write_case(name, body);
+    try {
+      load_case(f, "quick");
+      BOOST_ERROR("no error for " << name);
+    } catch (const InputError& e) {
+      BOOST_TEST_CONTEXT(name << ": " << e.what()) {
+        BOOST_TEST(std::string(e.what()).find(field_part) != std::string::npos);
+      }
+    }
+  };
+  expect_field("bad_key", "status = \"implemented\"\ncolour = 3\n", "colour");
+  expect_field("bad_unit", "status = \"implemented\"\n[[series]]\nname = \"s\"\nmodel = \"toy_linear\"\nparams = { x = \"2 MPa\" }\n",
+               "params.x");
+  expect_field("bad_model", "status = \"implemented\"\n[[series]]\nname = \"s\"\nmodel = \"nope\"\n", "model");
+  expect_field("bad_status", "status = \"maybe\"\n", "status");
+  expect_field("bad_ref", "status = \"implemented\"\n[[checks]]\nkey = \"k\"\nkind = \"verification\"\nmetric = \"relative\"\n"
+               "value = 1\nreference = { file = \"missing.csv\", column = \"x\" }\ntolerance = 0.1\nunits = \"1\"\nsource = \"s\"\n",
+               "reference.file");
+}

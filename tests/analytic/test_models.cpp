@@ -230,4 +230,21 @@ BOOST_AUTO_TEST_CASE(aghababaei_model_regimes) {
   BOOST_TEST(eval("aghababaei_transition", v).at("regime") == -1.0);  // 0.1 mm: plastic (observed)
 }
 
+BOOST_AUTO_TEST_CASE(kahwash_table1_from_tables4_and_5) {
+  // Kahwash Table 1 (interfacial strengths, 15..75 deg) recomputed with Eqs. 57-59 from the
+  // experimental mean forces of Tables 4 (F_c) and 5 (F_t), N/mm, depth 0.25 mm, rake 0, r = 1.
+  // theta = 0 and 90 deg: forces not given in the text (NOT RUN).
+  struct Row { double theta, Fc, Ft, S_sigma, S_z; };
+  const Row rows[] = {{15, 32.6, 19.2, 103.5, 26.8}, {30, 34.5, 16.9, 102.9, 35.2}, {45, 42.3, 17.3, 119.2, 50.2},
+                      {60, 53.5, 18.0, 143.0, 71.0}, {75, 61.0, 18.5, 158.9, 85.1}};
+  for (const auto& row : rows) {
+    const auto o = eval("kahwash_strengths", {{"F_c", row.Fc}, {"F_t", row.Ft}, {"t1", 0.25e-3}, {"w", 1e-3}});
+    BOOST_TEST_MESSAGE("theta " << row.theta << ": S_sigma " << o.at("normal_strength") / 1e6 << " (paper "
+                                << row.S_sigma << "), S_z " << o.at("shear_strength") / 1e6 << " (paper " << row.S_z << ")");
+    BOOST_TEST(o.at("phi_deg") == 45.0, tt::tolerance(1e-12));
+    BOOST_TEST(std::abs(o.at("normal_strength") / 1e6 - row.S_sigma) < 0.25);
+    BOOST_TEST(std::abs(o.at("shear_strength") / 1e6 - row.S_z) < 0.25);
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -218,6 +218,29 @@ BOOST_AUTO_TEST_CASE(eq18_19_solution_satisfies_eqs_16_17_12) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(bending_model_below_touching_model_fig8) {
+  // Nairn Sec. 4 (alpha = 30 deg): "At all depths of cut simulated, the minimum analytical model
+  // force is the bending model" (EPP, mu = 0; here with F_nb = 0), depths 0.1 to 7 mm.
+  const double Ep = e_prime();
+  for (double h = 0.1e-3; h <= 7.0e-3; h += 0.1e-3) {
+    const auto w = williams_bending({kGc, kSy, Ep, 0.0, h, deg(30), 0.0, 0.0, 0.64});
+    BOOST_TEST_REQUIRE(w.applicable);
+    BOOST_TEST(w.F_c < atkins_frictionless_force(kGc, kSy, h, deg(30), std::sqrt(3.0)));
+  }
+  // At alpha = 5 deg the bending force exceeds the touching force for the thinnest cuts.
+  for (double h = 0.05e-3; h <= 1.0e-3; h += 0.01e-3) {
+    const auto w = williams_bending({kGc, kSy, Ep, 0.0, h, deg(5), 0.0, 0.0, 0.64});
+    if (w.F_c < atkins_frictionless_force(kGc, kSy, h, deg(5), std::sqrt(3.0))) {
+      BOOST_TEST_MESSAGE("alpha = 5 deg: bending force below touching force from h = " << h * 1e3 << " mm");
+      BOOST_TEST(h > 0.1e-3);
+      break;
+    }
+  }
+  // The 2.0 / 2.1 mm transition depths of Fig. 9 are h* = 0.278 / 0.292.
+  BOOST_TEST(dimensionless_depth(kSy, 2.0e-3, Ep, kGc) == 0.278, tt::tolerance(2e-3));
+  BOOST_TEST(dimensionless_depth(kSy, 2.1e-3, Ep, kGc) == 0.292, tt::tolerance(2e-3));
+}
+
 BOOST_AUTO_TEST_CASE(bending_not_applicable_when_z_positive) {
   WilliamsInput in{kGc, kSy, e_prime(), 0.0, 5e-3, deg(30), 0.6, 0.0, 0.64};
   const auto r = williams_bending(in);

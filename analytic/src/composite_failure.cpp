@@ -1,0 +1,245 @@
+#include "cutbench/analytic/composite_failure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cutbench/common/errors.hpp"
+#include "gsl_util.hpp"
+
+namespace cutbench::analytic {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double sq(double x) { return x * x; }
+double macaulay(double x) { return x > 0.0 ? x : 0.0; }
+
+double effective_S_T(const Lamina& m) {
+  return (m.S_T > 0.0) ? m.S_T : transverse_shear_strength(m.Y_C, m.alpha0);
+}
+
+// Governing mode: the largest of the fibre, matrix and shear indices (ties: first listed).
+void finish(FailureIndices& r, FailureMode fibre_mode, FailureMode matrix_mode) {
+  r.index = r.fibre;
+  r.mode = fibre_mode;
+  if (r.matrix > r.index) {
+    r.index = r.matrix;
+    r.mode = matrix_mode;
+  }
+  if (!std::isnan(r.shear) && r.shear > r.index) {
+    r.index = r.shear;
+    r.mode = FailureMode::shear;
+  }
+}
+
+// LaRC matrix tension form (g = 1: the quadratic form printed by Kahwash).
+double larc_matrix_tension(double s22, double t12, double Y_T, double S_L, double g) {
+  return (1.0 - g) * s22 / Y_T + g * sq(s22 / Y_T) + sq(t12 / S_L);
+}
+
+struct PlaneSearch {
+  double value;
+  double angle;
+};
+
+// max over a in [0, a0] of (tau_T/S_T)^2 + (tau_L/S_L)^2 (LaRC02 matrix compression).
+PlaneSearch larc_matrix_compression(double s22, double t12, double S_T, double S_L, double eta_T,
+                                    double eta_L, double alpha0) {
+  auto f = [&](double a) {
+    const double c = std::cos(a), s = std::sin(a);
+    const double tT = macaulay(-s22 * c * (s - eta_T * c));
+    const double tL = macaulay(c * (std::abs(t12) + eta_L * s22 * c));
+    return sq(tT / S_T) + sq(tL / S_L);
+  };
+  const int n = 180;
+  int best = 0;
+  double best_v = f(0.0);
+  for (int i = 1; i <= n; ++i) {
+    const double v = f(alpha0 * i / n);
+    if (v > best_v) {
+      best_v = v;
+      best = i;
+    }
+  }
+  // Golden-section refinement on the neighbouring grid interval.
+  double lo = alpha0 * std::max(0, best - 1) / n, hi = alpha0 * std::min(n, best + 1) / n;
+  const double gr = 0.6180339887498949;
+  double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+  double f1 = f(x1), f2 = f(x2);
+  for (int it = 0; it < 60; ++it) {
+    if (f1 < f2) {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + gr * (hi - lo);
+      f2 = f(x2);
+    } else {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - gr * (hi - lo);
+      f1 = f(x1);
+    }
+  }
+  const double xm = 0.5 * (lo + hi), fm = f(xm);
+  if (fm >= best_v) return {fm, xm};
+  return {best_v, alpha0 * best / n};
+}
+
+}  // namespace
+
+double transverse_shear_strength(double Y_C, double alpha0) {
+  return Y_C * std::cos(alpha0) * (std::sin(alpha0) + std::cos(alpha0) / std::tan(2.0 * alpha0));
+}
+
+double larc_eta_T(double alpha0) { return -1.0 / std::tan(2.0 * alpha0); }
+
+double larc_eta_L(double S_L, double Y_C, double alpha0) {
+  return -S_L * std::cos(2.0 * alpha0) / (Y_C * sq(std::cos(alpha0)));
+}
+
+double larc_misalignment_angle_at_XC(double S_L, double X_C, double eta_L) {
+  const double q = S_L / X_C;
+  const double disc = 1.0 - 4.0 * (q + eta_L) * q;
+  if (disc < 0.0) {
+    throw InputError("S_L", "LaRC02 kinking: 1 - 4 (S_L/X_C + eta_L)(S_L/X_C) < 0, no misalignment angle");
+  }
+  return std::atan((1.0 - std::sqrt(disc)) / (2.0 * (q + eta_L)));
+}
+
+double larc_toughness_ratio(double E1, double E2, double nu21, double G12, double Y_T, double S_L) {
+  const double L22 = 2.0 * (1.0 / E2 - nu21 * nu21 / E1);
+  const double L44 = 1.0 / G12;
+  return L22 / L44 * sq(Y_T / S_L);
+}
+
+FailureIndices max_stress_failure(const PlaneStress& s, const Lamina& m) {
+  FailureIndices r;
+  r.fibre = s.s11 > 0.0 ? sq(s.s11 / m.X_T) : sq(s.s11 / m.X_C);
+  r.matrix = s.s22 > 0.0 ? sq(s.s22 / m.Y_T) : sq(s.s22 / m.Y_C);
+  r.shear = sq(s.t12 / m.S_L);
+  finish(r, s.s11 > 0.0 ? FailureMode::fibre_tension : FailureMode::fibre_compression,
+         s.s22 >= 0.0 ? FailureMode::matrix_tension : FailureMode::matrix_compression);
+  return r;
+}
+
+FailureIndices hashin_failure(const PlaneStress& s, const Lamina& m) {
+  FailureIndices r;
+  r.shear = kNaN;
+  if (s.s11 > 0.0) {
+    r.fibre = sq(s.s11 / m.X_T) + sq(s.t12 / m.S_L);
+  } else {
+    r.fibre = sq(s.s11 / m.X_C);
+  }
+  if (s.s22 >= 0.0) {
+    r.matrix = sq(s.s22 / m.Y_T) + sq(s.t12 / m.S_L);
+  } else {
+    const double ST = effective_S_T(m);
+    r.matrix = sq(s.s22 / (2.0 * ST)) + (sq(m.Y_C / (2.0 * ST)) - 1.0) * s.s22 / m.Y_C +
+               sq(s.t12 / m.S_L);
+  }
+  finish(r, s.s11 > 0.0 ? FailureMode::fibre_tension : FailureMode::fibre_compression,
+         s.s22 >= 0.0 ? FailureMode::matrix_tension : FailureMode::matrix_compression);
+  return r;
+}
+
+FailureIndices larc02_failure(const PlaneStress& s, const Lamina& m) {
+  FailureIndices r;
+  r.shear = kNaN;
+  r.fracture_angle = kNaN;
+  r.misalignment = kNaN;
+  const double ST = transverse_shear_strength(m.Y_C, m.alpha0);
+  const double eta_T = larc_eta_T(m.alpha0);
+  const double eta_L = larc_eta_L(m.S_L, m.Y_C, m.alpha0);
+  const double eps1T = (m.eps1_T > 0.0) ? m.eps1_T : m.X_T / m.E1;
+
+  // Misalignment-frame stresses (used for fibre compression and for matrix compression when
+  // s11 < -Y_C).
+  double s22m = s.s22, t12m = s.t12;
+  bool kink_degenerate = false;
+  if (s.s11 < 0.0) {
+    const double psiC = larc_misalignment_angle_at_XC(m.S_L, m.X_C, eta_L);
+    const double den = m.G12 + s.s11 - s.s22;
+    if (!(den > 0.0)) {
+      kink_degenerate = true;  // compression beyond the shear stiffness: kink band unstable
+    } else {
+      const double psi = (std::abs(s.t12) + (m.G12 - m.X_C) * psiC) / den;
+      r.misalignment = psi;
+      const double c = std::cos(psi), sn = std::sin(psi), at = std::abs(s.t12);
+      s22m = sn * sn * s.s11 + c * c * s.s22 - 2.0 * sn * c * at;
+      t12m = -sn * c * s.s11 + sn * c * s.s22 + (c * c - sn * sn) * at;
+    }
+  }
+
+  // Fibre modes.
+  if (s.s11 >= 0.0) {
+    r.fibre = (s.s11 - m.nu12 * s.s22) / m.E1 / eps1T;
+  } else if (kink_degenerate) {
+    r.fibre = 1e6;
+  } else if (s22m < 0.0) {
+    r.fibre = macaulay(std::abs(t12m) + eta_L * s22m) / m.S_L;
+  } else {
+    r.fibre = larc_matrix_tension(s22m, t12m, m.Y_T, m.S_L, m.g);
+  }
+
+  // Matrix modes.
+  if (s.s22 >= 0.0) {
+    r.matrix = larc_matrix_tension(s.s22, s.t12, m.Y_T, m.S_L, m.g);
+  } else {
+    const bool use_m = s.s11 < -m.Y_C && !kink_degenerate;
+    const auto ps = larc_matrix_compression(use_m ? s22m : s.s22, use_m ? t12m : s.t12, ST, m.S_L,
+                                            eta_T, eta_L, m.alpha0);
+    r.matrix = ps.value;
+    r.fracture_angle = ps.angle;
+  }
+  finish(r, s.s11 >= 0.0 ? FailureMode::fibre_tension : FailureMode::fibre_compression,
+         s.s22 >= 0.0 ? FailureMode::matrix_tension : FailureMode::matrix_compression);
+  return r;
+}
+
+FailureIndices failure_indices(Criterion c, const PlaneStress& s, const Lamina& m) {
+  switch (c) {
+    case Criterion::max_stress: return max_stress_failure(s, m);
+    case Criterion::hashin: return hashin_failure(s, m);
+    case Criterion::larc02: return larc02_failure(s, m);
+  }
+  throw InputError("criterion", "unknown failure criterion");
+}
+
+EnvelopePoint failure_envelope_point(Criterion c, EnvelopePlane plane, double theta, double fixed,
+                                     const Lamina& m) {
+  const double ct = std::cos(theta), st = std::sin(theta);
+  auto stress_at = [&](double r) {
+    PlaneStress s;
+    if (plane == EnvelopePlane::s11_s22) {
+      s.s11 = r * ct;
+      s.s22 = r * st;
+      s.t12 = fixed;
+    } else {
+      s.s11 = fixed;
+      s.s22 = r * ct;
+      s.t12 = r * st;
+    }
+    return s;
+  };
+  auto f = [&](double r) { return failure_indices(c, stress_at(r), m).index - 1.0; };
+  const double smin = std::min({m.X_T, m.X_C, m.Y_T, m.Y_C, m.S_L});
+  const double smax = std::max({m.X_T, m.X_C, m.Y_T, m.Y_C, m.S_L});
+  if (f(0.0) >= 0.0) {
+    throw NumericalError("failure envelope: the fixed stress alone already fails the lamina");
+  }
+  double root = 0.0;
+  if (!detail::first_root_geometric(f, 1e-6 * smin, 1e3 * smax, 1.02, "failure envelope", root)) {
+    throw NumericalError("failure envelope: no failure along this ray up to 1000 x the largest strength");
+  }
+  const PlaneStress s = stress_at(root);
+  EnvelopePoint p;
+  p.radius = root;
+  p.s1 = plane == EnvelopePlane::s11_s22 ? s.s11 : s.s22;
+  p.s2 = plane == EnvelopePlane::s11_s22 ? s.s22 : s.t12;
+  return p;
+}
+
+}  // namespace cutbench::analytic

@@ -204,16 +204,18 @@ ModelSpec zorev_model() {
   m.description = "Zorev tool-chip contact length l = m t2 (tan beta + tan(phi - alpha)) (Hahn and Rubenstein forms: not sourced)";
   m.source = "da Costa Figueiredo et al. 2024 Eq. 15 (after Fatima & Mativenga 2013); equals EQUATIONS.md C4(b)";
   m.params = {pos("t1", Dim::length, "uncut chip thickness"), rake_param(0.0), mu_param(),
-              shear_angle_param("phi", "shear-plane angle"),
+              shear_angle_param("phi", "shear-plane angle; unset: Merchant's phi_M", kNaN),
               pos("m", Dim::dimensionless, "material factor m (Figueiredo fit: about 1.10)", 1.0)};
   m.outputs = {out("l", Dim::length, "contact length"), out("l_over_t1", Dim::dimensionless, "l/t1"),
-               out("t2", Dim::length, "chip thickness t1 cos(phi - alpha)/sin(phi)")};
+               out("t2", Dim::length, "chip thickness t1 cos(phi - alpha)/sin(phi)"),
+               out("phi", Dim::angle, "shear-plane angle used")};
   m.evaluate = [](const Values& v) {
-    const double a = v.at("rake"), phi = v.at("phi"), t1 = v.at("t1");
+    const double a = v.at("rake"), t1 = v.at("t1");
+    const double phi = given(v, "phi") ? v.at("phi") : merchant_shear_angle(a, friction_angle(v.at("mu")));
     if (!(phi - a < kPi / 2)) throw InputError("phi", "phi - rake must be below 90 deg");
     const double l = zorev_contact_length(t1, a, friction_angle(v.at("mu")), phi, v.at("m"));
     ModelResult r;
-    r.outputs = {{"l", l}, {"l_over_t1", l / t1}, {"t2", t1 * chip_thickness_ratio(phi, a)}};
+    r.outputs = {{"l", l}, {"l_over_t1", l / t1}, {"t2", t1 * chip_thickness_ratio(phi, a)}, {"phi", phi}};
     return r;
   };
   return m;

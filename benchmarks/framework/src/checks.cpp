@@ -246,8 +246,9 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
 
 // Reference value in SI (or throws NotRun for an explicitly unavailable reference).
 double reference_value(const CaseSpec& spec, const std::vector<SeriesResult>& series, const json& ref,
-                       Dim dim, ReferenceCache& refs, const std::string& field) {
-  if (ref.is_number() || ref.is_string()) return qty(ref, dim, field);
+                       Dim dim, ReferenceCache& refs, const std::string& field, const std::string& units) {
+  if (ref.is_number()) return to_si(ref.get<double>(), units, field);  // a bare number is in the check's units
+  if (ref.is_string()) return qty(ref, dim, field);
   if (ref.is_object() && ref.contains("unavailable")) throw NotRun{ref["unavailable"].get<std::string>()};
   if (ref.is_object() && ref.contains("file")) {
     const auto path = source_root() / "reference_data" / spec.paper / ref["file"].get<std::string>();
@@ -326,11 +327,11 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
       try {
         if (cs.reference.is_array() && cs.reference.size() == 2) {
           r.is_range = true;
-          r.lower = disp(reference_value(spec, series, cs.reference[0], dim, refs, field + ".reference[0]"));
-          r.upper = disp(reference_value(spec, series, cs.reference[1], dim, refs, field + ".reference[1]"));
+          r.lower = disp(reference_value(spec, series, cs.reference[0], dim, refs, field + ".reference[0]", cs.units));
+          r.upper = disp(reference_value(spec, series, cs.reference[1], dim, refs, field + ".reference[1]", cs.units));
           r.has_reference = true;
         } else if (!(cs.reference.is_object() && (cs.reference.contains("series") || cs.reference.contains("ratio")))) {
-          r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference"));
+          r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference", cs.units));
           r.has_reference = true;
         }
       } catch (const NotRun&) {
@@ -389,15 +390,15 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
         if (!std::isfinite(r.value)) throw NotRun{"value is not finite"};
         if (cs.metric == "within" || (cs.reference.is_array() && cs.reference.size() == 2)) {
           r.is_range = true;
-          r.lower = disp(reference_value(spec, series, cs.reference.at(0), dim, refs, field + ".reference[0]"));
-          r.upper = disp(reference_value(spec, series, cs.reference.at(1), dim, refs, field + ".reference[1]"));
+          r.lower = disp(reference_value(spec, series, cs.reference.at(0), dim, refs, field + ".reference[0]", cs.units));
+          r.upper = disp(reference_value(spec, series, cs.reference.at(1), dim, refs, field + ".reference[1]", cs.units));
           if (r.lower > r.upper) std::swap(r.lower, r.upper);
           r.has_reference = true;
           r.error = r.value < r.lower ? r.value - r.lower : (r.value > r.upper ? r.value - r.upper : 0.0);
           r.status = (r.value >= r.lower && r.value <= r.upper) ? "PASS" : "FAIL";
         } else {
           set_tolerance();
-          r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference"));
+          r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference", cs.units));
           r.has_reference = true;
           if (!std::isfinite(r.reference)) throw NotRun{"reference is not finite"};
           if (r.relative_tol) {
@@ -419,7 +420,7 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
       r.message = p.why;
       try {
         if (!cs.reference.is_array() && !(cs.reference.is_object() && cs.reference.contains("series"))) {
-          r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference"));
+          r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference", cs.units));
           r.has_reference = std::isfinite(r.reference);
         }
       } catch (const NotRun&) {

@@ -86,7 +86,10 @@ int cmd_list(bool as_json, const fs::path& results, const std::string& paper_fil
     if (!paper_filter.empty() && c.paper != paper_filter) continue;
     std::string status = c.implemented() ? "NOT RUN" : "NOT IMPLEMENTED";
     json last = read_case_json(results, c);
-    if (c.implemented() && last.is_object() && last.contains("status")) status = last["status"].get<std::string>();
+    if (c.implemented() && last.is_object() && last.contains("status")) {
+      status = last["status"].get<std::string>();
+      if (status == "FAIL" && last.value("unexpected_failures", 1) == 0) status = "FAIL (known)";
+    }
     counts[c.paper][status]++;
     json j = {{"case", c.id}, {"paper", c.paper}, {"item", c.item}, {"title", c.title},
               {"solver", c.solver}, {"models", c.models}, {"tiers", c.tiers}, {"status", status}};
@@ -115,6 +118,8 @@ int cmd_list(bool as_json, const fs::path& results, const std::string& paper_fil
     for (const auto& [s, k] : m) std::cout << ", " << k << " " << s;
     std::cout << "\n";
   }
+  std::cout << "FAIL (known): every failing check is a documented known failure (a paper inconsistency);\n"
+               "it stays FAIL in the report and does not fail the exit code.\n";
   return 0;
 }
 

@@ -226,7 +226,8 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
     check_keys(tiers, kTiers, "tier");
     if (tiers.contains(tier)) {
       check_keys(tiers[tier], {"params"}, "tier." + tier);
-      for (const auto& [k, v] : tiers[tier].value("params", json::object()).items()) global[k] = v;
+      const json tier_params = tiers[tier].value("params", json::object());
+      for (const auto& [k, v] : tier_params.items()) global[k] = v;
     }
   }
   std::set<std::string> used_globals;
@@ -327,7 +328,8 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
         RowsSpec rs;
         rs.file = root / "reference_data" / c.paper / get_string(rows, "file", sw + "rows.");
         ReferenceTable t = load_reference(rs.file, sw + "rows.file");
-        for (const auto& [k, v] : rows.value("params", json::object()).items()) {
+        const json row_params = rows.value("params", json::object());
+        for (const auto& [k, v] : row_params.items()) {
           if (!find_param(*pspecs, k)) throw InputError(sw + "rows.params." + k, "unknown parameter of '" + ss.model + "'");
           const auto col = v.get<std::string>();
           const auto& column = t.column(col);

@@ -128,6 +128,9 @@ json case_result_to_json(const CaseSpec& spec, const CaseResult& r) {
   j["software"] = software_version();
   j["wall_time_s"] = r.wall_time_s;
   j["threads"] = r.threads;
+  int unexpected = 0;
+  for (const auto& c : r.checks) unexpected += (c.status == "FAIL" && c.known_failure.empty()) ? 1 : 0;
+  j["unexpected_failures"] = unexpected;
   j["checks"] = json::array();
   for (const auto& c : r.checks) j["checks"].push_back(check_to_json(c));
   json notes = json::array();

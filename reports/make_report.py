@@ -250,8 +250,12 @@ def main():
         for c in cases:
             counts[c["status"]] = counts.get(c["status"], 0) + 1
             last = c.get("last_run") or {}
-            parts = ['<div class="case" id="%s"><h3>%s — %s %s</h3>' % (
-                html.escape(c["item_id"]), html.escape(c["item"]), html.escape(c["title"]), badge(c["status"]))]
+            pending = sum(1 for ch in (last.get("checks") or []) if ch.get("status") == "NOT IMPLEMENTED")
+            extra_badge = (' <span class="badge ni">+%d checks await a solver</span>' % pending
+                           if c["implemented"] and pending else "")
+            parts = ['<div class="case" id="%s"><h3>%s — %s %s%s</h3>' % (
+                html.escape(c["item_id"]), html.escape(c["item"]), html.escape(c["title"]), badge(c["status"]),
+                extra_badge)]
             parts.append('<p class="small">case <code>%s</code> · solver %s · models %s · tiers %s%s</p>' % (
                 html.escape(c["case"]), html.escape(c["solver"]), html.escape(", ".join(c["models"])),
                 html.escape(", ".join(c["tiers"])),

@@ -261,20 +261,24 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
 #endif
   if (name == "analytic") {
     // Throughput of every analytic model at its defaults plus representative inputs from cases.
-    std::size_t evals = 0;
+    std::size_t evals = 0, points = 0;
     const auto t0 = std::chrono::steady_clock::now();
     for (int rep = 0; rep < std::max(1, repeat); ++rep) {
       for (const auto& file : discover_case_files(source_root())) {
         CaseSpec c = load_case(file, "full");
         if (!c.implemented() || c.solver != "analytic") continue;
-        run_case(c, "full", nullptr);
+        const CaseResult r = run_case(c, "full", nullptr);
+        for (const auto& sr : r.series) points += sr.table.rows();
         ++evals;
       }
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     report["analytic_cases_run"] = evals;
+    report["model_evaluations"] = points;
     report["wall_time_s"] = wall;
-    std::cout << "analytic: " << evals << " case runs (full tier) in " << fmt(wall, 4) << " s\n";
+    report["evaluations_per_s"] = static_cast<double>(points) / wall;
+    std::cout << "analytic: " << evals << " case runs (full tier), " << points << " model evaluations in "
+              << fmt(wall, 4) << " s (" << fmt(static_cast<double>(points) / wall, 4) << " evaluations/s)\n";
   } else {
     const SolverSpec* sv = SolverRegistry::instance().find(name);
     if (!sv) {

@@ -11,17 +11,26 @@
 
 #include "cutbench/analytic/models.hpp"
 #include "cutbench/common/errors.hpp"
+// Each solver library defines cutbench::<method>::register_solvers(SolverRegistry&).
 #ifdef CUTBENCH_HAVE_MPM
-#include "cutbench/mpm/register.hpp"
+namespace cutbench::mpm {
+void register_solvers(SolverRegistry& registry);
+}
 #endif
 #ifdef CUTBENCH_HAVE_SPH
-#include "cutbench/sph/register.hpp"
+namespace cutbench::sph {
+void register_solvers(SolverRegistry& registry);
+}
 #endif
 #ifdef CUTBENCH_HAVE_LIMIT
-#include "cutbench/limit/register.hpp"
+namespace cutbench::limit {
+void register_solvers(SolverRegistry& registry);
+}
 #endif
 #ifdef CUTBENCH_HAVE_EFG
-#include "cutbench/efg/register.hpp"
+namespace cutbench::efg {
+void register_solvers(SolverRegistry& registry);
+}
 #endif
 
 namespace cutbench::framework {

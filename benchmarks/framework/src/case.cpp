@@ -95,6 +95,28 @@ std::vector<double> linspace(double a, double b, int n) {
 
 }  // namespace
 
+std::vector<Values> series_points(const SeriesSpec& s, ReferenceCache& refs) {
+  std::vector<Values> pts;
+  if (s.sweep) {
+    for (std::size_t i = 0; i < s.sweep->values.size(); ++i) {
+      Values p = s.params;
+      p[s.sweep->param] = s.sweep->values[i];
+      for (const auto& [k, v] : s.zip) p[k] = v[i];
+      pts.push_back(p);
+    }
+  } else if (s.rows) {
+    const ReferenceTable& t = refs.get(s.rows->file, "series '" + s.name + "'.rows.file");
+    for (std::size_t r = 0; r < t.rows; ++r) {
+      Values p = s.params;
+      for (const auto& [param, col] : s.rows->params) p[param] = t.si_value(col, r);
+      pts.push_back(p);
+    }
+  } else {
+    pts.push_back(s.params);
+  }
+  return pts;
+}
+
 bool CaseSpec::in_tier(const std::string& tier) const {
   return std::find(tiers.begin(), tiers.end(), tier) != tiers.end();
 }
@@ -347,24 +369,8 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       // Validate every point now (ranges, required parameters): bad input fails before output.
       {
         ModelSpec check_spec{ss.model, "", "", *pspecs, {}, {}};
-        std::vector<Values> pts;
-        if (ss.sweep) {
-          for (std::size_t i = 0; i < ss.sweep->values.size(); ++i) {
-            Values p = ss.params;
-            p[ss.sweep->param] = ss.sweep->values[i];
-            for (const auto& [k, v] : ss.zip) p[k] = v[i];
-            pts.push_back(p);
-          }
-        } else if (ss.rows) {
-          ReferenceTable t = load_reference(ss.rows->file, sw + "rows.file");
-          for (std::size_t r = 0; r < t.rows; ++r) {
-            Values p = ss.params;
-            for (const auto& [param, col] : ss.rows->params) p[param] = t.si_value(col, r);
-            pts.push_back(p);
-          }
-        } else {
-          pts.push_back(ss.params);
-        }
+        ReferenceCache refs;
+        const std::vector<Values> pts = series_points(ss, refs);
         for (const auto& p : pts) {
           try {
             validate_params(check_spec, p);

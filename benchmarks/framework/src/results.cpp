@@ -80,14 +80,19 @@ hid_t make_group(hid_t parent, const std::string& name) {
   return H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
 }
 
-void write_table(hid_t parent, const Table& t) {
-  H5Id g(make_group(parent, t.name), H5Gclose);
+// The columns of a table as datasets of `group` (units attribute each), plus their order.
+void write_columns(hid_t group, const Table& t) {
   std::string order;
   for (const auto& c : t.order) {
-    dataset(g, c, t.columns.at(c), t.units.at(c));
+    dataset(group, c, t.columns.at(c), t.units.at(c));
     order += (order.empty() ? "" : ",") + c;
   }
-  attr_string(g, "columns", order);
+  attr_string(group, "columns", order);
+}
+
+void write_table(hid_t parent, const Table& t) {
+  H5Id g(make_group(parent, t.name), H5Gclose);
+  write_columns(g, t);
 }
 
 }  // namespace
@@ -198,12 +203,7 @@ fs::path write_hdf5(const CaseSpec& spec, const CaseResult& result, const fs::pa
       for (const auto& n : s.notes) notes += n + "\n";
       attr_string(g, "notes", notes);
       if (!s.error.empty()) attr_string(g, "error", s.error);
-      std::string order;
-      for (const auto& c : s.table.order) {
-        dataset(g, c, s.table.columns.at(c), s.table.units.at(c));
-        order += (order.empty() ? "" : ",") + c;
-      }
-      attr_string(g, "columns", order);
+      write_columns(g, s.table);
       for (std::size_t k = 0; k < s.runs.size(); ++k) {
         const RunOutput& run = s.runs[k];
         H5Id pg(make_group(g, "point_" + std::to_string(k)), H5Gclose);

@@ -60,29 +60,6 @@ const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::str
   return nullptr;
 }
 
-// Points of a series: each a full parameter set (SI).
-std::vector<Values> series_points(const SeriesSpec& s, ReferenceCache& refs) {
-  std::vector<Values> pts;
-  if (s.sweep) {
-    for (std::size_t i = 0; i < s.sweep->values.size(); ++i) {
-      Values p = s.params;
-      p[s.sweep->param] = s.sweep->values[i];
-      for (const auto& [k, v] : s.zip) p[k] = v[i];
-      pts.push_back(p);
-    }
-  } else if (s.rows) {
-    const ReferenceTable& t = refs.get(s.rows->file, "series '" + s.name + "'.rows.file");
-    for (std::size_t r = 0; r < t.rows; ++r) {
-      Values p = s.params;
-      for (const auto& [param, col] : s.rows->params) p[param] = t.si_value(col, r);
-      pts.push_back(p);
-    }
-  } else {
-    pts.push_back(s.params);
-  }
-  return pts;
-}
-
 std::vector<std::string> varied_params(const SeriesSpec& s) {
   std::vector<std::string> names;
   if (s.sweep) {

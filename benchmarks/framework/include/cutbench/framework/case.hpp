@@ -59,6 +59,10 @@ struct CaseSpec {
   bool in_tier(const std::string& tier) const;
 };
 
+class ReferenceCache;
+// The points of a series: each a full parameter set (SI) for one evaluation or solver run.
+std::vector<Values> series_points(const SeriesSpec& s, ReferenceCache& refs);
+
 // Root of the source tree (benchmarks/, reference_data/): $CUTBENCH_ROOT, else the build-time path.
 std::filesystem::path source_root();
 

@@ -9,6 +9,9 @@
 #include "cutbench/framework/case.hpp"
 #include "cutbench/framework/reference.hpp"
 #include "cutbench/framework/runner.hpp"
+#include "cutbench/framework/store.hpp"
+
+#include <hdf5.h>
 
 namespace fs = std::filesystem;
 using namespace cutbench;
@@ -228,4 +231,47 @@ BOOST_AUTO_TEST_CASE(bad_case_files_name_the_field) {
   expect_field("bad_ref", "status = \"implemented\"\n[[checks]]\nkey = \"k\"\nkind = \"verification\"\nmetric = \"relative\"\n"
                "value = 1\nreference = { file = \"missing.csv\", column = \"x\" }\ntolerance = 0.1\nunits = \"1\"\nsource = \"s\"\n",
                "reference.file");
+}
+
+BOOST_AUTO_TEST_CASE(hdf5_result_has_provenance_and_units) {
+  add_toy();
+  const fs::path f = write_case("toy_h5", R"(status = "implemented"
+[[series]]
+name = "line"
+model = "toy_linear"
+sweep = { param = "x", values = ["1 mm", "2 mm"] }
+)");
+  CaseSpec c = load_case(f, "quick");
+  CaseResult r = run_case(c, "quick", nullptr);
+  const fs::path out = fs::temp_directory_path() / "cutbench_test_results";
+  fs::remove_all(out);
+  const fs::path h5 = write_hdf5(c, r, out);
+  write_case_json(out, c, r);
+  BOOST_TEST(fs::exists(h5));
+  for (const auto& e : fs::recursive_directory_iterator(out)) {
+    BOOST_TEST(e.path().string().find(".tmp") == std::string::npos);  // temp files renamed
+  }
+  const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  BOOST_REQUIRE(file >= 0);
+  for (const char* a : {"software_version", "date", "case_id", "paper_doi", "item", "parameters", "threads",
+                        "wall_time_s", "checks"}) {
+    BOOST_TEST_CONTEXT(a) { BOOST_TEST(H5Aexists(file, a) > 0); }
+  }
+  for (const char* d : {"/series/line/x", "/series/line/y", "/series/line/applicable"}) {
+    const hid_t ds = H5Dopen2(file, d, H5P_DEFAULT);
+    BOOST_TEST_CONTEXT(d) {
+      BOOST_REQUIRE(ds >= 0);
+      BOOST_TEST(H5Aexists(ds, "units") > 0);
+    }
+    H5Dclose(ds);
+  }
+  double y[2] = {0, 0};
+  const hid_t ds = H5Dopen2(file, "/series/line/y", H5P_DEFAULT);
+  H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, y);
+  H5Dclose(ds);
+  H5Fclose(file);
+  BOOST_TEST(y[0] == 2e-3, boost::test_tools::tolerance(1e-14));  // a = 2 default, x = 1 mm
+  BOOST_TEST(y[1] == 4e-3, boost::test_tools::tolerance(1e-14));
+  const json j = read_case_json(out, c);
+  BOOST_TEST(j["status"].get<std::string>() == "NOT RUN");  // no checks
 }

@@ -87,6 +87,14 @@ const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::str
   return nullptr;
 }
 
+// True when some registered solver belongs to this method ("mpm" -> "mpm_cutting", ...).
+bool solver_built(const std::string& method) {
+  for (const auto& sv : SolverRegistry::instance().all()) {
+    if (sv.name.rfind(method + "_", 0) == 0) return true;
+  }
+  return false;
+}
+
 std::vector<double> linspace(double a, double b, int n) {
   std::vector<double> v(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) v[static_cast<std::size_t>(i)] = n == 1 ? a : a + (b - a) * i / (n - 1);
@@ -275,6 +283,9 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       } else if (const auto* sv = solvers.find(ss.model)) {
         pspecs = &sv->params;
         ss.solver = true;
+      } else if (c.implemented() && ss.pending.empty() && c.solver != "analytic" &&
+                 ss.model.rfind(c.solver + "_", 0) == 0 && !solver_built(c.solver)) {
+        ss.pending = "the " + c.solver + " solver is not in this build (CUTBENCH_SOLVERS=OFF)";
       } else if (c.implemented() && ss.pending.empty()) {
         throw InputError(sw + "model", "unknown model or solver '" + ss.model + "'");
       }

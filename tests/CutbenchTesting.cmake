@@ -14,5 +14,5 @@ function(cutbench_add_boost_test name)
                    --logger=HRF,test_suite --logger=JUNIT,all,${CMAKE_BINARY_DIR}/junit/${name}.xml)
   set_tests_properties(${name} PROPERTIES
     LABELS "${ARG_LABELS}"
-    ENVIRONMENT "OMP_NUM_THREADS=${CUTBENCH_TEST_THREADS};LC_ALL=C;BOOST_TEST_COLOR_OUTPUT=no")
+    ENVIRONMENT "OMP_NUM_THREADS=${CUTBENCH_TEST_THREADS};OMP_WAIT_POLICY=PASSIVE;LC_ALL=C;BOOST_TEST_COLOR_OUTPUT=no")
 endfunction()

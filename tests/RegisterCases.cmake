@@ -21,7 +21,7 @@ foreach(case_file ${CUTBENCH_CASE_FILES})
       set_tests_properties(${test_name} PROPERTIES
         LABELS "${tier};paper:${paper};solver:${solver}"
         SKIP_RETURN_CODE 77
-        ENVIRONMENT "OMP_NUM_THREADS=${CUTBENCH_TEST_THREADS};LC_ALL=C;CUTBENCH_ROOT=${PROJECT_SOURCE_DIR}")
+        ENVIRONMENT "OMP_NUM_THREADS=${CUTBENCH_TEST_THREADS};OMP_WAIT_POLICY=PASSIVE;LC_ALL=C;CUTBENCH_ROOT=${PROJECT_SOURCE_DIR}")
     endif()
   endforeach()
 endforeach()

@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 bash scripts/setup-debian.sh
 cmake --preset release >/dev/null
 cmake --build --preset release
-export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}" LC_ALL=C
+export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}" OMP_WAIT_POLICY=PASSIVE LC_ALL=C
 rc=0
 ./build/release/benchmarks/cli/cutbench run --tier quick --out results || rc=$?
 ./build/release/benchmarks/cli/cutbench report --results results --out report

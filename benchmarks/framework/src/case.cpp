@@ -26,10 +26,10 @@ const std::set<std::string> kCaseKeys = {
     "id",     "paper",  "item",   "title",       "requirement", "status", "reason",
     "solver", "models", "tiers",  "assumptions", "params",      "tier",   "series",
     "checks", "plots",  "tables"};
-const std::set<std::string> kSeriesKeys = {"name", "model", "params", "sweep", "rows", "zip", "tier", "pending"};
+const std::set<std::string> kSeriesKeys = {"name", "model", "params", "sweep", "rows", "zip", "tier", "pending", "link"};
 const std::set<std::string> kCheckKeys = {"key",    "kind",      "metric",        "value",
                                           "reference", "tolerance", "units",      "source",
-                                          "known_failure", "description"};
+                                          "known_failure", "description", "tiers"};
 const std::set<std::string> kKinds = {"verification", "reproduction", "validation"};
 const std::set<std::string> kMetrics = {"relative", "absolute", "within", "curve_max_norm",
                                         "windowed_mean", "feature"};
@@ -377,8 +377,22 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
         }
         ss.rows = rs;
       }
+      if (s.contains("link")) {
+        for (const auto& [k, v] : s["link"].items()) {
+          if (!find_param(*pspecs, k)) throw InputError(sw + "link." + k, "unknown parameter of '" + ss.model + "'");
+          if (!v.is_object() || !v.contains("series") || !v.contains("output")) {
+            throw InputError(sw + "link." + k, "expected { series = \"name\", output = \"column\" }");
+          }
+          const std::string from = v["series"].get<std::string>();
+          bool earlier = false;
+          for (const auto& prev : c.series) earlier = earlier || prev.name == from;
+          if (!earlier) throw InputError(sw + "link." + k, "series '" + from + "' must be declared before this one");
+          ss.links[k] = {from, v["output"].get<std::string>()};
+        }
+      }
       // Validate every point now (ranges, required parameters): bad input fails before output.
-      {
+      // Linked parameters are only known at run time: validated then.
+      if (ss.links.empty()) {
         ModelSpec check_spec{ss.model, "", "", *pspecs, {}, {}};
         ReferenceCache refs;
         const std::vector<Values> pts = series_points(ss, refs);
@@ -420,6 +434,11 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       cs.source = get_string(ch, "source", cw);
       cs.known_failure = get_string(ch, "known_failure", cw, false);
       cs.description = get_string(ch, "description", cw, false);
+      cs.tiers = get_strings(ch, "tiers", cw);
+      for (const auto& t : cs.tiers) {
+        if (!kTiers.count(t)) throw InputError(cw + "tiers", "unknown tier '" + t + "' (expected quick or full)");
+      }
+      if (!cs.tiers.empty() && std::find(cs.tiers.begin(), cs.tiers.end(), tier) == cs.tiers.end()) continue;
       if (!ch.contains("value")) throw InputError(cw + "value", "missing");
       if (!ch.contains("reference")) throw InputError(cw + "reference", "missing");
       cs.value = ch["value"];

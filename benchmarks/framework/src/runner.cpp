@@ -181,7 +181,43 @@ CaseResult run_case(const CaseSpec& spec, const std::string& tier, const Progres
         continue;
       }
       try {
-        r.series.push_back(run_series(spec.series[i], refs, progress, f0, f1));
+        SeriesSpec linked = spec.series[i];
+        std::string pending;
+        std::size_t n_points = series_points(linked, refs).size();
+        for (const auto& [param, from] : linked.links) {
+          const SeriesResult* src = nullptr;
+          for (const auto& prev : r.series) {
+            if (prev.name == from.first) src = &prev;
+          }
+          if (!src || !src->pending.empty() || !src->error.empty()) {
+            pending = "needs series '" + from.first + "'" + (src && !src->pending.empty() ? ": " + src->pending : "");
+            break;
+          }
+          auto it = src->table.columns.find(from.second);
+          if (it == src->table.columns.end()) {
+            throw InputError("series '" + linked.name + "'.link." + param,
+                             "series '" + from.first + "' has no output '" + from.second + "'");
+          }
+          const auto& vals = it->second;
+          if (vals.size() == 1) {
+            linked.params[param] = vals[0];
+          } else if (vals.size() == n_points && linked.sweep) {
+            linked.zip[param] = vals;
+          } else {
+            throw InputError("series '" + linked.name + "'.link." + param,
+                             "series '" + from.first + "' has " + std::to_string(vals.size()) + " rows, this series " +
+                                 std::to_string(n_points) + " points");
+          }
+        }
+        if (!pending.empty()) {
+          SeriesResult pend;
+          pend.name = linked.name;
+          pend.model = linked.model;
+          pend.pending = pending;
+          r.series.push_back(std::move(pend));
+          continue;
+        }
+        r.series.push_back(run_series(linked, refs, progress, f0, f1));
       } catch (const InputError&) {
         throw;
       } catch (const std::exception& e) {

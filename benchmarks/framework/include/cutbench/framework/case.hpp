@@ -40,10 +40,14 @@ struct SeriesSpec {
   std::optional<RowsSpec> rows;
   // Further parameters swept together with `sweep` (same length), e.g. E_T alongside h.
   std::map<std::string, std::vector<double>> zip;
+  // Parameters taken at run time from an earlier series' output (one value, or one per point),
+  // e.g. the simulated rubbing force F_nb feeding the bending model: param -> {series, output}.
+  std::map<std::string, std::pair<std::string, std::string>> links;
 };
 
 struct CheckSpec {
   std::string key, kind, metric, units, source, known_failure, description;
+  std::vector<std::string> tiers;  // evaluated only in these tiers (empty: every tier)
   json value, reference, tolerance;
 };
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 
@@ -11,6 +12,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "cutbench/common/errors.hpp"
+#include "ldl.hpp"
 
 namespace cutbench::limit {
 
@@ -53,6 +55,7 @@ SocpProblem standard_form(const VectorXd& c, const SpMat& A, const VectorXd& b, 
 std::string to_string(SocpStatus s) {
   switch (s) {
     case SocpStatus::optimal: return "optimal";
+    case SocpStatus::optimal_inaccurate: return "optimal (reduced accuracy)";
     case SocpStatus::primal_infeasible: return "primal infeasible";
     case SocpStatus::dual_infeasible: return "dual infeasible (primal unbounded)";
     case SocpStatus::max_iterations: return "maximum iterations reached";
@@ -142,6 +145,24 @@ double min_eig(const ConeDims& k, const VectorXd& u) {
     o += d;
   }
   return m;
+}
+
+bool strictly_interior(const ConeDims& k, const VectorXd& u) {
+  for (int i = 0; i < k.nonneg; ++i) {
+    if (!(u[i] > 0.0)) return false;
+  }
+  int o = k.nonneg;
+  for (int d : k.soc) {
+    if (d > 1) {
+      const double n1 = u.segment(o + 1, d - 1).norm();
+      // u0 − ‖u1‖ must be resolvable in floating point
+      if (!(u[o] - n1 > 1e-13 * u[o])) return false;
+    } else if (!(u[o] > 0.0)) {
+      return false;
+    }
+    o += d;
+  }
+  return true;
 }
 
 double max_step(const ConeDims& k, const VectorXd& u, const VectorXd& du, double cap) {
@@ -267,13 +288,36 @@ private:
 };
 #pragma GCC diagnostic pop
 
+// Own up-looking LDLᵀ with dynamic regularisation of pivots with the wrong sign.
+class BuiltinLdl final : public LdltBackend {
+public:
+  BuiltinLdl(std::vector<signed char> signs, double eps, double delta)
+      : signs_(std::move(signs)), eps_(eps), delta_(delta) {}
+  void analyze(const SpMat& K) override { ldl_.analyze(K, signs_); }
+  bool factorize(const SpMat& K) override {
+    regularised_ = ldl_.factorize(K, eps_, delta_);
+    return true;
+  }
+  VectorXd solve(const VectorXd& r) override { return ldl_.solve(r); }
+
+private:
+  detail::QuasiDefiniteLdl ldl_;
+  std::vector<signed char> signs_;
+  double eps_, delta_;
+  int regularised_ = 0;
+};
+
 // Quasi-definite KKT matrix: lower triangle stored; W² blocks rewritten each iteration.
 class Kkt {
 public:
   Kkt(const SocpProblem& p, double delta, KktBackend backend, int max_refine)
       : p_(p), n_(p.n()), np_(static_cast<int>(p.A.rows())), m_(static_cast<int>(p.G.rows())),
         delta_(delta), max_refine_(max_refine) {
-    if (backend == KktBackend::cholmod) {
+    if (backend == KktBackend::builtin) {
+      std::vector<signed char> signs(static_cast<std::size_t>(n_ + np_ + m_), -1);
+      std::fill(signs.begin(), signs.begin() + n_, static_cast<signed char>(1));
+      ldlt_ = std::make_unique<BuiltinLdl>(std::move(signs), 1e-13, 2e-7);
+    } else if (backend == KktBackend::cholmod) {
       ldlt_ = std::make_unique<CholmodLdlt>();
     } else {
       ldlt_ = std::make_unique<EigenLdlt>();
@@ -319,7 +363,19 @@ public:
       ldlt_->analyze(K_);
       analyzed_ = true;
     }
-    return ldlt_->factorize(K_);
+    const bool ok = ldlt_->factorize(K_);
+    if (!ok && std::getenv("CUTBENCH_SOCP_DEBUG")) {
+      int nonfinite = 0;
+      double mx = 0, mn = 1e300;
+      for (int j = 0; j < K_.outerSize(); ++j)
+        for (SpMat::InnerIterator it(K_, j); it; ++it) {
+          if (!std::isfinite(it.value())) ++nonfinite;
+          else { mx = std::max(mx, std::abs(it.value())); if (it.value() != 0) mn = std::min(mn, std::abs(it.value())); }
+        }
+      std::fprintf(stderr, "KKT failed: nonfinite %d max %g min %g lpw [%g %g]\n", nonfinite, mx, mn,
+                   w.lp_w.size() ? w.lp_w.minCoeff() : 0.0, w.lp_w.size() ? w.lp_w.maxCoeff() : 0.0);
+    }
+    return ok;
   }
 
   // Exact (unregularised) KKT product.
@@ -343,7 +399,7 @@ public:
     for (; k < max_refine_; ++k) {
       const VectorXd e = rhs - multiply(x);
       const double en = e.norm();
-      if (!(en > tol) || en > 0.5 * prev) break;
+      if (!(en > tol) || en > 0.9 * prev) break;
       prev = en;
       x += ldlt_->solve(e);
     }
@@ -376,8 +432,8 @@ void shift_into_cone(const ConeDims& k, VectorXd& u) {
 // ------------------------------------------------------------------------------------------
 // Interior-point iteration
 // ------------------------------------------------------------------------------------------
-SocpResult solve_socp(const SocpProblem& p, const SocpSettings& st) {
-  p.check();
+namespace {
+SocpResult solve_equilibrated(const SocpProblem& p, const SocpSettings& st) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   double factor_time = 0.0;
@@ -442,6 +498,11 @@ SocpResult solve_socp(const SocpProblem& p, const SocpSettings& st) {
   const double nb = std::max({1.0, p.b.size() ? p.b.norm() : 0.0, p.h.size() ? p.h.norm() : 0.0});
   const double nc = std::max(1.0, p.c.norm());
   const VectorXd e = cone::identity(k);
+  struct Saved {
+    VectorXd x, y, z, s;
+  } best;
+  double best_merit = std::numeric_limits<double>::infinity();
+  SocpIteration best_rec;
 
   log("  it      pcost         dcost        gap      pres     dres     k/t      mu     step   sigma IR");
   for (int it = 0; it <= st.max_iter; ++it) {
@@ -471,6 +532,12 @@ SocpResult solve_socp(const SocpProblem& p, const SocpSettings& st) {
     if (rec.pcost < 0.0) relgap = rec.gap / -rec.pcost;
     else if (rec.dcost > 0.0) relgap = rec.gap / rec.dcost;
 
+    const double merit = std::max({rec.pres, rec.dres, std::min(relgap, rec.gap)});
+    if (std::isfinite(merit) && merit < best_merit) {
+      best_merit = merit;
+      best = {x / tau, y / tau, z / tau, s / tau};
+      best_rec = rec;
+    }
     res.iterations = it;
     res.pcost = rec.pcost;
     res.dcost = rec.dcost;
@@ -576,7 +643,13 @@ SocpResult solve_socp(const SocpProblem& p, const SocpSettings& st) {
     const VectorXd rc = -cone::jprod(k, lam, lam) - cone::jprod(k, ws, wz) + sigma * mu * e;
     const double rk = -tau * kappa - aff.dtau * aff.dkappa + sigma * mu;
     const Dir d = direction(sigma, rc, rk);
-    const double alpha = std::min(1.0, st.step_fraction * step_to_boundary(d));
+    double alpha = std::min(1.0, st.step_fraction * step_to_boundary(d));
+    // safeguard against round-off in the cone step: keep both iterates strictly interior
+    for (int bt = 0; bt < 50; ++bt) {
+      const VectorXd s_new = s + alpha * d.ds, z_new = z + alpha * d.dz;
+      if (cone::strictly_interior(k, s_new) && cone::strictly_interior(k, z_new)) break;
+      alpha *= 0.8;
+    }
 
     rec.step = alpha;
     rec.sigma = sigma;
@@ -602,13 +675,26 @@ SocpResult solve_socp(const SocpProblem& p, const SocpSettings& st) {
     }
   }
 
-  if (res.status == SocpStatus::optimal || res.status == SocpStatus::max_iterations ||
-      res.status == SocpStatus::numerical_error) {
-    if (res.x.size() == 0) {
-      res.x = x / tau;
-      res.y = y / tau;
-      res.z = z / tau;
-      res.s = s / tau;
+  if (res.status == SocpStatus::optimal) {
+    res.x = x / tau;
+    res.y = y / tau;
+    res.z = z / tau;
+    res.s = s / tau;
+  } else if ((res.status == SocpStatus::max_iterations || res.status == SocpStatus::numerical_error) &&
+             best.x.size()) {
+    // stalled or broke down: fall back to the best iterate seen; accept it at reduced accuracy
+    res.x = best.x;
+    res.y = best.y;
+    res.z = best.z;
+    res.s = best.s;
+    res.pcost = best_rec.pcost;
+    res.dcost = best_rec.dcost;
+    res.gap = best_rec.gap;
+    res.pres = best_rec.pres;
+    res.dres = best_rec.dres;
+    if (best_merit < st.inaccurate_tol) {
+      res.message = "stalled at " + std::to_string(best_merit) + " (" + to_string(res.status) + "); best iterate returned";
+      res.status = SocpStatus::optimal_inaccurate;
     }
   }
   {
@@ -620,6 +706,88 @@ SocpResult solve_socp(const SocpProblem& p, const SocpSettings& st) {
   res.factor_seconds = factor_time;
   res.seconds = std::chrono::duration<double>(clock::now() - t0).count();
   return res;
+}
+
+// Ruiz equilibration: x = D x̃, rows of A scaled by E_A, rows of G by E_G (constant on each cone
+// block so that K is preserved). Returns the scaled problem.
+struct Scaling {
+  VectorXd d, ea, eg;
+};
+
+SocpProblem equilibrate(const SocpProblem& p, Scaling& sc, int passes) {
+  const int n = p.n(), np = static_cast<int>(p.A.rows()), m = static_cast<int>(p.G.rows());
+  sc.d = VectorXd::Ones(n);
+  sc.ea = VectorXd::Ones(np);
+  sc.eg = VectorXd::Ones(m);
+  SocpProblem q = p;
+  // block index of each G row
+  std::vector<int> block(static_cast<std::size_t>(m));
+  {
+    int o = 0, b = 0;
+    for (; o < p.cones.nonneg; ++o) block[static_cast<std::size_t>(o)] = b++;
+    for (int d : p.cones.soc) {
+      for (int i = 0; i < d; ++i) block[static_cast<std::size_t>(o + i)] = b;
+      o += d;
+      ++b;
+    }
+  }
+  const int nblocks = p.cones.nonneg + static_cast<int>(p.cones.soc.size());
+  for (int pass = 0; pass < passes; ++pass) {
+    VectorXd cmax = VectorXd::Zero(n), amax = VectorXd::Zero(np), bmax = VectorXd::Zero(nblocks);
+    for (int j = 0; j < n; ++j) {
+      for (SpMat::InnerIterator it(q.A, j); it; ++it) {
+        const double v = std::abs(it.value());
+        cmax[j] = std::max(cmax[j], v);
+        amax[it.row()] = std::max(amax[it.row()], v);
+      }
+      for (SpMat::InnerIterator it(q.G, j); it; ++it) {
+        const double v = std::abs(it.value());
+        cmax[j] = std::max(cmax[j], v);
+        const int b = block[static_cast<std::size_t>(it.row())];
+        bmax[b] = std::max(bmax[b], v);
+      }
+    }
+    auto f = [](double v) { return v > 0.0 ? 1.0 / std::sqrt(v) : 1.0; };
+    VectorXd dc(n), da(np), dg(m);
+    for (int j = 0; j < n; ++j) dc[j] = f(cmax[j]);
+    for (int i = 0; i < np; ++i) da[i] = f(amax[i]);
+    for (int i = 0; i < m; ++i) dg[i] = f(bmax[block[static_cast<std::size_t>(i)]]);
+    q.A = da.asDiagonal() * q.A * dc.asDiagonal();
+    q.G = dg.asDiagonal() * q.G * dc.asDiagonal();
+    sc.d = sc.d.cwiseProduct(dc);
+    sc.ea = sc.ea.cwiseProduct(da);
+    sc.eg = sc.eg.cwiseProduct(dg);
+  }
+  q.c = sc.d.cwiseProduct(p.c);
+  q.b = sc.ea.cwiseProduct(p.b);
+  q.h = sc.eg.cwiseProduct(p.h);
+  return q;
+}
+
+}  // namespace
+
+SocpResult solve_socp(const SocpProblem& p, const SocpSettings& st) {
+  p.check();
+  Scaling sc;
+  const SocpProblem q = equilibrate(p, sc, st.equilibration_passes);
+  SocpResult r = solve_equilibrated(q, st);
+  if (r.x.size() == p.c.size()) r.x = sc.d.cwiseProduct(r.x);
+  if (r.s.size() == p.h.size()) r.s = r.s.cwiseQuotient(sc.eg);
+  if (r.y.size() == p.b.size()) r.y = sc.ea.cwiseProduct(r.y);
+  if (r.z.size() == p.h.size()) r.z = sc.eg.cwiseProduct(r.z);
+  // report objective values and residuals of the original problem
+  if (r.status == SocpStatus::optimal || r.status == SocpStatus::optimal_inaccurate ||
+      r.status == SocpStatus::max_iterations || r.status == SocpStatus::numerical_error) {
+    if (r.x.size() == p.c.size() && r.y.size() == p.b.size()) {
+      r.pcost = p.c.dot(r.x);
+      r.dcost = -p.b.dot(r.y) - p.h.dot(r.z);
+      r.gap = r.s.dot(r.z);
+      const double nb = std::max({1.0, p.b.size() ? p.b.norm() : 0.0, p.h.size() ? p.h.norm() : 0.0});
+      r.pres = std::sqrt((p.A * r.x - p.b).squaredNorm() + (p.G * r.x + r.s - p.h).squaredNorm()) / nb;
+      r.dres = (p.A.transpose() * r.y + p.G.transpose() * r.z + p.c).norm() / std::max(1.0, p.c.norm());
+    }
+  }
+  return r;
 }
 
 }  // namespace cutbench::limit

@@ -61,7 +61,11 @@ struct SocpProblem {
 SocpProblem standard_form(const Eigen::VectorXd& c, const SpMat& A, const Eigen::VectorXd& b,
                           const ConeDims& cones);
 
-enum class KktBackend { cholmod, eigen };
+// builtin: own up-looking sparse LDLᵀ (AMD ordering) with dynamic regularisation of pivots of
+// the wrong sign — the robust default. cholmod: SuiteSparse CHOLMOD simplicial LDLᵀ via Eigen;
+// eigen: Eigen::SimplicialLDLT. The last two have no dynamic regularisation and can break down
+// on singular saddle points (reported as numerical_error).
+enum class KktBackend { builtin, cholmod, eigen };
 
 struct SocpSettings {
   double feastol = 1e-8;  // relative primal and dual residuals
@@ -69,13 +73,17 @@ struct SocpSettings {
   double reltol = 1e-8;   // relative duality gap
   int max_iter = 100;
   double static_reg = 1e-9;  // δ, relative to the largest |entry| of A, G (at least 1e-12)
-  int max_refine = 8;        // iterative-refinement steps per KKT solve
+  int max_refine = 20;       // iterative-refinement steps per KKT solve
   double step_fraction = 0.99;
-  KktBackend backend = KktBackend::cholmod;
+  // If the iteration stalls, the best iterate is returned as optimal_inaccurate when its
+  // residuals and relative gap are below this.
+  double inaccurate_tol = 1e-5;
+  int equilibration_passes = 0;  // Ruiz scaling of [A; G] (0: none; experimental, off by default)
+  KktBackend backend = KktBackend::builtin;
   std::function<void(const std::string&)> log;  // iteration log lines (optional)
 };
 
-enum class SocpStatus { optimal, primal_infeasible, dual_infeasible, max_iterations, numerical_error };
+enum class SocpStatus { optimal, optimal_inaccurate, primal_infeasible, dual_infeasible, max_iterations, numerical_error };
 std::string to_string(SocpStatus s);
 inline std::ostream& operator<<(std::ostream& os, SocpStatus s) { return os << to_string(s); }
 
@@ -108,6 +116,8 @@ namespace cone {
 double max_step(const ConeDims& k, const Eigen::VectorXd& u, const Eigen::VectorXd& du, double cap);
 // Minimum "eigenvalue": min over blocks of u_i (orthant) and u0 − ‖u1‖ (SOC).
 double min_eig(const ConeDims& k, const Eigen::VectorXd& u);
+// u in the interior of K with a margin that floating point can resolve.
+bool strictly_interior(const ConeDims& k, const Eigen::VectorXd& u);
 // Nesterov-Todd scaling point: returns W as a list of dense blocks (1×1 for orthant coordinates
 // gathered in one diagonal vector, m×m per SOC) with W z = W⁻¹ s.
 struct NtScaling {

@@ -495,6 +495,7 @@ SocpResult solve_equilibrated(const SocpProblem& p, const SocpSettings& st) {
   shift_into_cone(k, z);
   double tau = 1.0, kappa = 1.0;
 
+
   const double nb = std::max({1.0, p.b.size() ? p.b.norm() : 0.0, p.h.size() ? p.h.norm() : 0.0});
   const double nc = std::max(1.0, p.c.norm());
   const VectorXd e = cone::identity(k);

@@ -51,6 +51,10 @@ void LimitModel::add_contact(const std::vector<int>& nodes, double mu) {
   }
 }
 
+void LimitModel::add_contact(const std::vector<int>& nodes, double mu, const Vector2d& normal) {
+  for (int nd : nodes) contacts.push_back({nd, normal.normalized(), mu});
+}
+
 namespace {
 
 // Bᵀ: rows = velocity dofs (2·nodes), columns = stress unknowns (9 per element: (p,q,τ) at

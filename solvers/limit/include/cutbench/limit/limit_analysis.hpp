@@ -50,6 +50,8 @@ struct LimitModel {
   // Permanent contact (w_n = 0) with friction μ at the given nodes; the normal is the outward
   // normal of the boundary there (averaged over the adjacent boundary edges).
   void add_contact(const std::vector<int>& nodes, double mu);
+  // Same with a given outward normal (straight contact faces).
+  void add_contact(const std::vector<int>& nodes, double mu, const Eigen::Vector2d& normal);
 };
 
 struct LimitSolution {

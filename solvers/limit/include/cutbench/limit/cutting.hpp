@@ -1,0 +1,49 @@
+#pragma once
+// Steady-state orthogonal cutting by mixed limit analysis (Figueiredo et al. 2024, Fig. 1).
+//
+// Tool frame: the tool is fixed with its tip at the origin, the rake face leaves the tip along
+// r = (sin α, cos α). The workpiece layer of uncut thickness t1 (0 ≤ y ≤ t1) enters from the
+// left with the imposed unit velocity (1, 0); the cutting line y = 0 is a smooth rigid plane
+// (v_y = 0, v_x free: "boundary AI allows horizontal movement"). The chip is the parallelogram
+// bounded by the shear plane OS (S = (−t1 cot φ, t1)), the rake face, and its back surface at
+// distance t2 = t1 cos(φ − α)/sin φ (Eq. 2). The rake face is in permanent contact (w_n = 0)
+// with Coulomb friction μ over the contact length l from the tip; beyond l the chip is free.
+#include <vector>
+
+#include "cutbench/limit/limit_analysis.hpp"
+
+namespace cutbench::limit {
+
+struct CuttingSetup {
+  double t1 = 1.0;          // uncut chip thickness (non-dimensional lengths: t1 = 1 is natural)
+  double alpha = 0.0;       // rake angle [rad]
+  double phi = 0.785398163397448;  // shear angle [rad]
+  double contact_length = 1.0;     // l, measured along the rake face from the tip
+  double mu = 0.0;          // Coulomb coefficient on the rake face
+  double k = 1.0;           // shear yield stress
+  double inflow_length = 2.0;  // length of uncut layer ahead of the shear plane, in t1
+  double chip_extra = 2.0;     // chip length beyond the contact, in t2
+  int n = 8;                // cells across t1 (mesh density)
+};
+
+struct CuttingResult {
+  LimitModel model;
+  LimitSolution solution;
+  double t2 = 0.0;
+  double cutting_force = 0.0;  // F_c per unit width (= collapse power for unit speed)
+  double feed_force = 0.0;     // F_f per unit width: force on the tool normal to the cut surface (+y)
+  double fc_bar = 0.0;         // F_c / (k t1)
+  double ff_bar = 0.0;
+  // rake-face profile, ordered by s (distance from the tip), lumped nodal values
+  std::vector<double> s, sigma_n, tau, slip;
+};
+
+double chip_thickness(double t1, double phi, double alpha);  // Eq. 2
+double merchant_shear_angle(double alpha, double mu);        // Eq. 1: π/4 + (α − β)/2
+// Merchant's cutting force F_c/(k t1 w) = cos(β − α) / (sin φ cos(φ + β − α)).
+double merchant_force_bar(double phi, double alpha, double mu);
+
+LimitModel cutting_model(const CuttingSetup& setup);
+CuttingResult solve_cutting(const CuttingSetup& setup, const SocpSettings& settings = {});
+
+}  // namespace cutbench::limit

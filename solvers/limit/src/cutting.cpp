@@ -1,0 +1,143 @@
+#include "cutbench/limit/cutting.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "cutbench/common/errors.hpp"
+
+namespace cutbench::limit {
+
+using Eigen::Vector2d;
+
+double chip_thickness(double t1, double phi, double alpha) { return t1 * std::cos(phi - alpha) / std::sin(phi); }
+
+double merchant_shear_angle(double alpha, double mu) { return 0.25 * M_PI + 0.5 * (alpha - std::atan(mu)); }
+
+double merchant_force_bar(double phi, double alpha, double mu) {
+  const double beta = std::atan(mu);
+  return std::cos(beta - alpha) / (std::sin(phi) * std::cos(phi + beta - alpha));
+}
+
+namespace {
+// Merge by exact-ish coordinate match on a fine grid (meshes share identical edge nodes).
+Mesh merge_fast(const Mesh& a, const Mesh& b, double h) {
+  auto key = [h](const Vector2d& x) {
+    return std::make_pair(static_cast<long long>(std::llround(x.x() / h)), static_cast<long long>(std::llround(x.y() / h)));
+  };
+  std::map<std::pair<long long, long long>, int> index;
+  Mesh m = a;
+  for (int i = 0; i < a.num_nodes(); ++i) index.emplace(key(a.nodes[static_cast<std::size_t>(i)]), i);
+  std::vector<int> map(b.nodes.size());
+  for (std::size_t i = 0; i < b.nodes.size(); ++i) {
+    auto it = index.find(key(b.nodes[i]));
+    if (it != index.end()) {
+      map[i] = it->second;
+    } else {
+      map[i] = static_cast<int>(m.nodes.size());
+      m.nodes.push_back(b.nodes[i]);
+      m.is_vertex.push_back(b.is_vertex[i]);
+    }
+  }
+  for (const auto& el : b.elements) {
+    std::array<int, 6> e{};
+    for (std::size_t k = 0; k < 6; ++k) e[k] = map[static_cast<std::size_t>(el[k])];
+    m.elements.push_back(e);
+  }
+  return m;
+}
+}  // namespace
+
+LimitModel cutting_model(const CuttingSetup& c) {
+  if (!(c.t1 > 0.0)) throw InputError("t1", "must be positive");
+  if (!(c.phi > 0.0 && c.phi < 0.5 * M_PI)) throw InputError("phi", "shear angle must be in (0, 90) deg");
+  if (!(std::abs(c.alpha) < 0.5 * M_PI - c.phi + 0.5 * M_PI)) throw InputError("alpha", "rake angle out of range");
+  if (!(c.contact_length > 0.0)) throw InputError("contact_length", "must be positive");
+  if (c.n < 2) throw InputError("n", "need at least 2 cells across t1");
+  const double t1 = c.t1, t2 = chip_thickness(t1, c.phi, c.alpha);
+  const Vector2d O(0.0, 0.0), r(std::sin(c.alpha), std::cos(c.alpha));
+  const Vector2d S(-t1 / std::tan(c.phi), t1);
+  const double Lw = c.inflow_length * t1 - S.x();  // inflow boundary at x = −Lw
+  const double Lc = c.contact_length + c.chip_extra * t2;
+  const int ny = c.n;
+  // cells: work region along x graded toward the shear plane; chip along r with a break at l
+  const int nxw = std::max(2, static_cast<int>(std::ceil(c.n * Lw / t1 * 0.5)));
+  const int nc1 = std::max(2, static_cast<int>(std::ceil(c.n * c.contact_length / t1)));
+  const int nc2 = std::max(2, static_cast<int>(std::ceil(c.n * (Lc - c.contact_length) / t1 * 0.5)));
+  const auto eta = uniform_grid(ny);
+  const auto xw = graded_grid(nxw, 1.1, 1.0);
+  const double lb = c.contact_length / Lc;
+  const auto xc = piecewise_grid({0.0, lb, 1.0}, {uniform_grid(nc1), graded_grid(nc2, 1.1, 0.0)});
+  const Mesh work = structured_quad({-Lw, 0.0}, O, S, {-Lw, t1}, xw, eta, Pattern::union_jack);
+  const Mesh chip = structured_quad(O, O + Lc * r, S + Lc * r, S, xc, eta, Pattern::union_jack);
+  LimitModel m;
+  m.mesh = merge_fast(work, chip, 1e-9 * t1);
+  m.k = c.k;
+
+  const double tol = 1e-8 * t1;
+  std::vector<int> contact;
+  const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));  // rake-face normal, out of the chip
+  for (int i = 0; i < m.mesh.num_nodes(); ++i) {
+    const Vector2d& x = m.mesh.nodes[static_cast<std::size_t>(i)];
+    if (x.norm() < tol) {  // tool tip: stagnation
+      m.fix(i, 0);
+      m.fix(i, 1);
+      continue;
+    }
+    if (std::abs(x.x() + Lw) < tol) {  // inflow: unit velocity
+      m.fix(i, 0, 1.0);
+      m.fix(i, 1, 0.0);
+      continue;
+    }
+    if (std::abs(x.y()) < tol && x.x() < 0.0) {  // cutting line: smooth
+      m.fix(i, 1);
+      continue;
+    }
+    const double along = x.dot(r), off = x.dot(nr);
+    if (std::abs(off) < tol && along > 0.0 && along <= c.contact_length + tol) contact.push_back(i);
+  }
+  m.add_contact(contact, c.mu, nr);
+  return m;
+}
+
+CuttingResult solve_cutting(const CuttingSetup& c, const SocpSettings& settings) {
+  CuttingResult res;
+  res.model = cutting_model(c);
+  res.t2 = chip_thickness(c.t1, c.phi, c.alpha);
+  res.solution = solve_limit(res.model, settings);
+  const auto& sol = res.solution;
+  res.cutting_force = sol.collapse;
+  // force on the tool = − Σ contact reactions on the body (+ the tip node's reaction)
+  Vector2d ftool(0.0, 0.0);
+  const Vector2d r(std::sin(c.alpha), std::cos(c.alpha));
+  std::vector<std::pair<double, int>> order;
+  for (std::size_t i = 0; i < res.model.contacts.size(); ++i) {
+    const auto& cn = res.model.contacts[i];
+    const Vector2d t(-cn.normal.y(), cn.normal.x());
+    ftool -= sol.contact_rn[static_cast<Eigen::Index>(i)] * cn.normal + sol.contact_rt[static_cast<Eigen::Index>(i)] * t;
+    order.emplace_back(res.model.mesh.nodes[static_cast<std::size_t>(cn.node)].dot(r), static_cast<int>(i));
+  }
+  res.feed_force = ftool.y();
+  res.fc_bar = res.cutting_force / (c.k * c.t1);
+  res.ff_bar = res.feed_force / (c.k * c.t1);
+  // lumped contact stresses: nodal reaction / tributary length (1/6, 4/6, 1/6 weights of T6 edges)
+  std::map<int, double> trib;
+  for (const auto& e : boundary_edges(res.model.mesh)) {
+    const double L = (res.model.mesh.nodes[static_cast<std::size_t>(e.b)] - res.model.mesh.nodes[static_cast<std::size_t>(e.a)]).norm();
+    trib[e.a] += L / 6.0;
+    trib[e.b] += L / 6.0;
+    trib[e.m] += 4.0 * L / 6.0;
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [s, i] : order) {
+    const auto& cn = res.model.contacts[static_cast<std::size_t>(i)];
+    const double tl = trib[cn.node];
+    res.s.push_back(s);
+    res.sigma_n.push_back(sol.contact_rn[i] / tl);
+    res.tau.push_back(sol.contact_rt[i] / tl);
+    res.slip.push_back(sol.contact_wt[i]);
+  }
+  return res;
+}
+
+}  // namespace cutbench::limit

@@ -22,6 +22,12 @@ BOOST_AUTO_TEST_CASE(register_is_idempotent_and_runs) {
   const auto ob = block->run({{"k", 1e8}, {"width", 0.02}, {"height", 0.02}, {"q", 5e7}, {"mu", 0.3}}, nullptr);
   BOOST_TEST(std::abs(ob.scalars.at("force") / (0.3 * 5e7 * 0.02) - 1.0) < 1e-6);
   BOOST_CHECK_THROW(strip->run({{"width", -1.0}}, nullptr), cutbench::InputError);
+  const auto* cut = reg.find("limit_cutting");
+  BOOST_REQUIRE(cut);
+  const auto oc = cut->run({{"k", 6.4e8}, {"t1", 2e-4}, {"w", 3.5e-3}, {"n", 4.0}}, nullptr);
+  BOOST_TEST(std::abs(oc.scalars.at("fc_bar") - 2.0) < 0.05);
+  BOOST_TEST(std::abs(oc.scalars.at("cutting_force") / (oc.scalars.at("fc_bar") * 6.4e8 * 2e-4 * 3.5e-3) - 1.0) < 1e-12);
+  BOOST_TEST(oc.tables.size() == 1u);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cutbench/common/errors.hpp"
+#include "cutbench/limit/cutting.hpp"
 #include "cutbench/limit/limit_analysis.hpp"
 
 namespace cutbench::limit {
@@ -182,10 +183,86 @@ SolverSpec block_spec() {
   return s;
 }
 
+SolverSpec cutting_spec() {
+  SolverSpec s;
+  s.name = "limit_cutting";
+  s.description =
+      "Orthogonal cutting by mixed limit analysis: fixed chip geometry (phi, t2, contact length), Coulomb rake contact";
+  s.source = "figueiredo2024 sec. 2.1-2.3, Eqs. 1-2, 5-13";
+  ParamSpec phi = param("phi", Dim::angle, "shear angle (default: Merchant, Eq. 1)");
+  phi.default_value = nan_value();
+  phi.min = 0.0;
+  phi.max = 0.5 * kPi;
+  phi.min_inclusive = phi.max_inclusive = false;
+  ParamSpec l = param("contact_length", Dim::length, "tool-chip contact length l (default: t1/cos(alpha))");
+  l.default_value = nan_value();
+  ParamSpec alpha = param("alpha", Dim::angle, "rake angle");
+  alpha.default_value = 0.0;
+  alpha.min = -0.5;
+  alpha.max = 0.7;
+  s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("t1", Dim::length, "uncut chip thickness", 1.0),
+              p_pos("w", Dim::length, "width of cut", 1.0), alpha, p_nonneg("mu", Dim::dimensionless, "friction coefficient", 0.0),
+              phi, l, p_int("n", "mesh density (cells across t1)", 8, 2, 64)};
+  s.scalars = {{"cutting_force", Dim::force, "F_c"},
+               {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
+               {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},
+               {"merchant_fc_bar", Dim::dimensionless, "Merchant's F_c/(k t1 w) at the same phi"},
+               {"phi", Dim::angle, "shear angle used"},
+               {"t2", Dim::length, "chip thickness (Eq. 2)"}};
+  s.run = [spec = s](const Values& given, const ProgressFn& progress) {
+    Values v = validated(spec, given);
+    const double k = v.at("k"), t1 = v.at("t1"), w = v.at("w"), a = v.at("alpha"), mu = v.at("mu");
+    CuttingSetup c;
+    c.alpha = a;
+    c.mu = mu;
+    c.phi = std::isnan(v.at("phi")) ? merchant_shear_angle(a, mu) : v.at("phi");
+    const double len = std::isnan(v.at("contact_length")) ? t1 / std::cos(a) : v.at("contact_length");
+    if (!(len > 0.0)) throw InputError("contact_length", "must be positive");
+    c.contact_length = len / t1;
+    c.n = as_int(v, "n");
+    if (progress) progress(0.0, "solving");
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = solve_cutting(c);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    RunOutput out;
+    auto put = [&](const std::string& name, double value, const std::string& unit) {
+      out.scalars[name] = value;
+      out.scalar_units[name] = unit;
+    };
+    put("cutting_force", r.fc_bar * k * t1 * w, "N");
+    put("feed_force", r.ff_bar * k * t1 * w, "N");
+    put("fc_bar", r.fc_bar, "1");
+    put("merchant_fc_bar", merchant_force_bar(c.phi, a, mu), "1");
+    put("phi", c.phi, "rad");
+    put("t2", r.t2 * t1, "m");
+    add_solver_stats(out, r.solution, dt);
+    Table contact;
+    contact.name = "rake_contact";
+    std::vector<double> s_over_l, sn, tau, slip;
+    for (std::size_t i = 0; i < r.s.size(); ++i) {
+      s_over_l.push_back(r.s[i] / c.contact_length);
+      sn.push_back(r.sigma_n[i]);
+      tau.push_back(r.tau[i]);
+      slip.push_back(r.slip[i]);
+    }
+    contact.add("s_over_l", "1", s_over_l);
+    contact.add("sigma_n_over_k", "1", sn);
+    contact.add("tau_over_k", "1", tau);
+    contact.add("slip_velocity", "1", slip);
+    out.tables.push_back(std::move(contact));
+    add_snapshot(out, r.model, r.solution, t1, 1.0);
+    out.notes.push_back("fixed geometry: no steady-state (phi*) update, no contact-length search, no adaptive mesh yet");
+    out.notes.push_back("contact stresses are lumped nodal reactions over tributary lengths (T6 weights 1/6, 4/6, 1/6)");
+    if (progress) progress(1.0, "done");
+    return out;
+  };
+  return s;
+}
+
 }  // namespace
 
 void register_solvers(SolverRegistry& registry) {
-  for (SolverSpec (*make)() : {strip_spec, punch_spec, block_spec}) {
+  for (SolverSpec (*make)() : {strip_spec, punch_spec, block_spec, cutting_spec}) {
     SolverSpec spec = make();
     if (registry.find(spec.name)) continue;
     registry.add(std::move(spec));

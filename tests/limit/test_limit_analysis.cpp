@@ -51,6 +51,19 @@ BOOST_AUTO_TEST_CASE(frictional_block_sliding) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(frictional_block_coulomb_fixed_point) {
+  // non-associated Coulomb by the fixed point on the pressure: same exact answer μ q W
+  auto m = frictional_block_model(1.0, 1.0, 1.0, 0.3, 4, 4);
+  CoulombReport rep;
+  const auto s = solve_limit_coulomb(m, quiet(), {}, &rep);
+  BOOST_TEST_MESSAGE("block coulomb μ=0.3 λ=" << s.collapse << " fixed-point iterations " << rep.iterations);
+  BOOST_TEST(solved(s));
+  BOOST_TEST(rep.converged);
+  BOOST_TEST(std::abs(s.collapse - 0.3) < 1e-6);
+  // all friction is dissipated at the interface: λ·1 = μ Σ p |w_t|
+  BOOST_TEST(std::abs(s.friction_dissipation - s.collapse) < 1e-5);
+}
+
 BOOST_AUTO_TEST_CASE(frictional_block_shearing) {
   // μ q ≥ k: sliding would need μ q W; shearing along the base bounds the load by k W. With free
   // end faces the block finds a cheaper combined mechanism (toe crushing / rotation), so only

@@ -104,7 +104,11 @@ CuttingResult solve_cutting(const CuttingSetup& c, const SocpSettings& settings)
   CuttingResult res;
   res.model = cutting_model(c);
   res.t2 = chip_thickness(c.t1, c.phi, c.alpha);
-  res.solution = solve_limit(res.model, settings);
+  if (c.mu > 0.0 && c.coulomb_fixed_point) {
+    res.solution = solve_limit_coulomb(res.model, settings, {}, &res.coulomb);
+  } else {
+    res.solution = solve_limit(res.model, settings);
+  }
   const auto& sol = res.solution;
   res.cutting_force = sol.collapse;
   // force on the tool = − Σ contact reactions on the body (+ the tip node's reaction)
@@ -137,6 +141,14 @@ CuttingResult solve_cutting(const CuttingSetup& c, const SocpSettings& settings)
     res.tau.push_back(sol.contact_rt[i] / tl);
     res.slip.push_back(sol.contact_wt[i]);
   }
+  // stick fraction: share of the contact length (by tributary weights) where the node sticks
+  double total = 0.0, stuck = 0.0;
+  for (std::size_t i = 0; i < res.model.contacts.size(); ++i) {
+    const double tl = trib[res.model.contacts[i].node];
+    total += tl;
+    if (std::abs(sol.contact_wt[static_cast<Eigen::Index>(i)]) < 1e-6) stuck += tl;
+  }
+  res.stick_fraction = total > 0.0 ? stuck / total : 0.0;
   return res;
 }
 

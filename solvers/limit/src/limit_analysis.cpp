@@ -1,6 +1,7 @@
 #include "cutbench/limit/limit_analysis.hpp"
 
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include <Eigen/SparseCore>
@@ -181,6 +182,20 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
     const int dx = 2 * cn.node, dy = dx + 1;
     const double Fn = cn.normal.x() * F[dx] + cn.normal.y() * F[dy];
     const double F0n = cn.normal.x() * F0[dx] + cn.normal.y() * F0[dy];
+    if (std::isfinite(cn.tresca_bound)) {  // |r_t| ≤ g (fixed bound, from the previous pressure)
+      for (double sgn : {1.0, -1.0}) {
+        tg.emplace_back(m, nsig + c, sgn);
+        hvec.push_back(std::max(cn.tresca_bound, 0.0));
+        ++m;
+      }
+      // r_n ≤ 0: the contact transmits compression only (Eq. 5)
+      add_row(tg, m, dx, cn.normal.x());
+      add_row(tg, m, dy, cn.normal.y());
+      if (load_mode && Fn != 0.0) tg.emplace_back(m, ilam, -Fn);
+      hvec.push_back(F0n);
+      ++m;
+      continue;
+    }
     for (double sgn : {1.0, -1.0}) {
       add_row(tg, m, dx, cn.mu * cn.normal.x());
       add_row(tg, m, dy, cn.mu * cn.normal.y());
@@ -273,6 +288,36 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
     sol.element_dissipation_density[sp / 3] += d;
   }
   for (int e = 0; e < ne; ++e) sol.element_dissipation_density[e] /= mesh.area(e);
+  return sol;
+}
+
+LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings, const CoulombOptions& opt,
+                                  CoulombReport* report) {
+  // start: the associated (coupled) formulation gives a first pressure distribution
+  for (auto& c : model.contacts) c.tresca_bound = std::numeric_limits<double>::quiet_NaN();
+  LimitSolution sol = solve_limit(model, settings);
+  CoulombReport rep;
+  const auto nc = static_cast<Eigen::Index>(model.contacts.size());
+  VectorXd p = (-sol.contact_rn).cwiseMax(0.0);
+  rep.collapse_history.push_back(sol.collapse);
+  for (int it = 1; it <= opt.max_iter; ++it) {
+    for (Eigen::Index c = 0; c < nc; ++c) {
+      auto& cn = model.contacts[static_cast<std::size_t>(c)];
+      cn.tresca_bound = cn.mu * p[c];
+    }
+    sol = solve_limit(model, settings);
+    const VectorXd pn = (-sol.contact_rn).cwiseMax(0.0);
+    const double change = (pn - p).cwiseAbs().maxCoeff() / std::max(1e-12, pn.cwiseAbs().maxCoeff());
+    rep.iterations = it;
+    rep.change = change;
+    rep.collapse_history.push_back(sol.collapse);
+    p = opt.relaxation * pn + (1.0 - opt.relaxation) * p;
+    if (change < opt.tol) {
+      rep.converged = true;
+      break;
+    }
+  }
+  if (report) *report = rep;
   return sol;
 }
 

@@ -202,7 +202,8 @@ SolverSpec cutting_spec() {
   alpha.max = 0.7;
   s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("t1", Dim::length, "uncut chip thickness", 1.0),
               p_pos("w", Dim::length, "width of cut", 1.0), alpha, p_nonneg("mu", Dim::dimensionless, "friction coefficient", 0.0),
-              phi, l, p_int("n", "mesh density (cells across t1)", 8, 2, 64)};
+              phi, l, p_int("n", "mesh density (cells across t1)", 8, 2, 64),
+              p_int("coulomb_fixed_point", "1: non-associated Coulomb (fixed point on the pressure), 0: coupled cone", 1, 0, 1)};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
                {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
                {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},
@@ -220,6 +221,7 @@ SolverSpec cutting_spec() {
     if (!(len > 0.0)) throw InputError("contact_length", "must be positive");
     c.contact_length = len / t1;
     c.n = as_int(v, "n");
+    c.coulomb_fixed_point = as_int(v, "coulomb_fixed_point") == 1;
     if (progress) progress(0.0, "solving");
     const auto t0 = std::chrono::steady_clock::now();
     const auto r = solve_cutting(c);
@@ -235,6 +237,11 @@ SolverSpec cutting_spec() {
     put("merchant_fc_bar", merchant_force_bar(c.phi, a, mu), "1");
     put("phi", c.phi, "rad");
     put("t2", r.t2 * t1, "m");
+    put("stick_fraction", r.stick_fraction, "1");
+    put("coulomb_iterations", r.coulomb.iterations, "1");
+    if (c.mu > 0.0 && c.coulomb_fixed_point && !r.coulomb.converged)
+      out.notes.push_back("Coulomb fixed point not converged (last relative pressure change " +
+                          std::to_string(r.coulomb.change) + ")");
     add_solver_stats(out, r.solution, dt);
     Table contact;
     contact.name = "rake_contact";

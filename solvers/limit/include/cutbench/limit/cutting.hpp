@@ -24,11 +24,15 @@ struct CuttingSetup {
   double inflow_length = 2.0;  // length of uncut layer ahead of the shear plane, in t1
   double chip_extra = 2.0;     // chip length beyond the contact, in t2
   int n = 8;                // cells across t1 (mesh density)
+  // μ > 0: true = non-associated Coulomb with w_n = 0 by the fixed point on the pressure
+  // (solve_limit_coulomb); false = the coupled (associated) cone |r_t| + μ r_n ≤ 0.
+  bool coulomb_fixed_point = true;
 };
 
 struct CuttingResult {
   LimitModel model;
   LimitSolution solution;
+  CoulombReport coulomb;  // fixed-point history (empty when μ = 0 or not used)
   double t2 = 0.0;
   double cutting_force = 0.0;  // F_c per unit width (= collapse power for unit speed)
   double feed_force = 0.0;     // F_f per unit width: force on the tool normal to the cut surface (+y)
@@ -36,6 +40,7 @@ struct CuttingResult {
   double ff_bar = 0.0;
   // rake-face profile, ordered by s (distance from the tip), lumped nodal values
   std::vector<double> s, sigma_n, tau, slip;
+  double stick_fraction = 0.0;  // fraction of the contact length with |w_t| < 1e-6 (node-wise)
 };
 
 double chip_thickness(double t1, double phi, double alpha);  // Eq. 2

@@ -19,6 +19,7 @@
 // so that Fᵀv = 1 in load mode), the cone multipliers the plastic strain rates. See
 // solvers/limit/README.md. Units: any consistent set; the problem is best scaled so that k and
 // the lengths are O(1) (the runners non-dimensionalise by k and a reference length).
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -33,6 +34,9 @@ struct ContactNode {
   int node = 0;
   Eigen::Vector2d normal{0.0, -1.0};  // outward unit normal of the body at the node
   double mu = 0.0;                     // Coulomb coefficient
+  // NaN: Coulomb coupled to the current normal reaction (|r_t| + μ r_n ≤ 0, associated form).
+  // Finite g: Tresca-type bound |r_t| ≤ g (one step of the fixed point on the pressure).
+  double tresca_bound = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct LimitModel {
@@ -71,6 +75,25 @@ struct LimitSolution {
 };
 
 LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings = {});
+
+// Coulomb friction with permanent contact (w_n = 0) by a fixed point on the contact pressure:
+// solve with |r_t| ≤ μ p_k (p_k from the previous solution, first from the coupled form), update
+// p_{k+1} = −r_n, until max|Δp|/max p < tol. Each step is a limit problem with a Tresca-type
+// friction dissipation μ p_k |w_t|; at the fixed point the friction is non-associated Coulomb
+// (no dilatancy), which the coupled form is not (see README).
+struct CoulombOptions {
+  int max_iter = 30;
+  double tol = 1e-3;
+  double relaxation = 1.0;
+};
+struct CoulombReport {
+  int iterations = 0;
+  bool converged = false;
+  double change = 0.0;
+  std::vector<double> collapse_history;
+};
+LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings = {}, const CoulombOptions& opt = {},
+                                  CoulombReport* report = nullptr);
 
 // Built-in verification problems (non-dimensional: k = 1 unless given).
 // Plane-strain strip in tension, length L, width w: exact λ = 2 k (traction), load 2 k w.

@@ -37,6 +37,14 @@ BOOST_AUTO_TEST_CASE(strip_tension_exact_on_any_mesh) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(strip_tension_elongated_elements) {
+  // robustness: elements of aspect ratio 75 (regression: non-finite first iterate with δ = 1e-9)
+  auto m = strip_tension_model(300.0, 1.0, 4, 2);
+  const auto s = solve_limit(m, quiet());
+  BOOST_TEST(solved(s));
+  BOOST_TEST(std::abs(s.collapse - 2.0) < 1e-6);
+}
+
 BOOST_AUTO_TEST_CASE(frictional_block_sliding) {
   // W = H = 1, q = 1: λ H = μ q W (exact on any mesh while the linear stress field is admissible)
   for (double mu : {0.0, 0.2, 0.4}) {

@@ -310,13 +310,13 @@ private:
 // Quasi-definite KKT matrix: lower triangle stored; W² blocks rewritten each iteration.
 class Kkt {
 public:
-  Kkt(const SocpProblem& p, double delta, KktBackend backend, int max_refine)
+  Kkt(const SocpProblem& p, double delta, KktBackend backend, int max_refine, double dyn_eps, double dyn_delta)
       : p_(p), n_(p.n()), np_(static_cast<int>(p.A.rows())), m_(static_cast<int>(p.G.rows())),
         delta_(delta), max_refine_(max_refine) {
     if (backend == KktBackend::builtin) {
       std::vector<signed char> signs(static_cast<std::size_t>(n_ + np_ + m_), -1);
       std::fill(signs.begin(), signs.begin() + n_, static_cast<signed char>(1));
-      ldlt_ = std::make_unique<BuiltinLdl>(std::move(signs), 1e-13, 2e-7);
+      ldlt_ = std::make_unique<BuiltinLdl>(std::move(signs), dyn_eps, dyn_delta);
     } else if (backend == KktBackend::cholmod) {
       ldlt_ = std::make_unique<CholmodLdlt>();
     } else {
@@ -452,7 +452,7 @@ SocpResult solve_equilibrated(const SocpProblem& p, const SocpSettings& st) {
     for (SpMat::InnerIterator it(p.G, j); it; ++it) amax = std::max(amax, std::abs(it.value()));
   const double delta = std::max(1e-12, st.static_reg * std::max(1.0, amax));
 
-  Kkt kkt(p, delta, st.backend, st.max_refine);
+  Kkt kkt(p, delta, st.backend, st.max_refine, st.dynamic_reg_eps, st.dynamic_reg_delta);
   res.kkt_dim = kkt.dim();
 
   auto log = [&](const std::string& line) {

@@ -72,7 +72,9 @@ struct SocpSettings {
   double abstol = 1e-8;   // absolute duality gap
   double reltol = 1e-8;   // relative duality gap
   int max_iter = 100;
-  double static_reg = 1e-9;  // δ, relative to the largest |entry| of A, G (at least 1e-12)
+  double static_reg = 1e-8;  // δ, relative to the largest |entry| of A, G (at least 1e-12)
+  double dynamic_reg_eps = 1e-13;   // builtin LDLᵀ: pivots with sign·d ≤ eps …
+  double dynamic_reg_delta = 2e-7;  // … are replaced by sign·delta
   int max_refine = 20;       // iterative-refinement steps per KKT solve
   double step_fraction = 0.99;
   // If the iteration stalls, the best iterate is returned as optimal_inaccurate when its

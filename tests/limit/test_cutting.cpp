@@ -49,4 +49,18 @@ BOOST_AUTO_TEST_CASE(frictionless_chip_against_merchant) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(contact_length_search_frictionless) {
+  // α = 0, μ = 0, φ = 45°: the normal stress at the end of the contact vanishes at l ≈ 1.2–1.3 t1
+  // (n = 4: 1.234, n = 8: 1.266); the paper: "on the order of t1" without friction.
+  CuttingSetup c;
+  c.n = 4;
+  const auto r = search_contact_length(c);
+  BOOST_TEST_MESSAGE("contact length " << r.contact_length << " after " << r.lengths.size() << " solves");
+  BOOST_TEST(!r.restricted);
+  BOOST_TEST(r.contact_length > 1.1);
+  BOOST_TEST(r.contact_length < 1.4);
+  BOOST_TEST(std::abs(end_normal_stress(r.final, r.contact_length)) < 0.05);
+  BOOST_TEST(end_normal_stress(r.final, 1.0) < 0.0);  // compressive over the restricted length
+}
+
 BOOST_AUTO_TEST_SUITE_END()

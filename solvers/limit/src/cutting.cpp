@@ -152,4 +152,71 @@ CuttingResult solve_cutting(const CuttingSetup& c, const SocpSettings& settings)
   return res;
 }
 
+double end_normal_stress(const CuttingResult& r, double contact_length, double fraction) {
+  // tributary-weighted mean of σ_n over s ≥ (1 − fraction) l (lumped nodal values)
+  double num = 0.0, den = 0.0;
+  const double s0 = (1.0 - fraction) * contact_length;
+  for (std::size_t i = 0; i < r.s.size(); ++i) {
+    if (r.s[i] < s0 - 1e-12) continue;
+    const double w = (i + 1 < r.s.size() ? r.s[i + 1] : r.s[i]) - (i > 0 ? r.s[i - 1] : 0.0);
+    num += w * r.sigma_n[i];
+    den += w;
+  }
+  return den > 0.0 ? num / den : 0.0;
+}
+
+ContactLengthResult search_contact_length(CuttingSetup c, const ContactLengthOptions& opt, const SocpSettings& settings) {
+  ContactLengthResult out;
+  auto eval = [&](double l) {
+    c.contact_length = l;
+    CuttingResult r = solve_cutting(c, settings);
+    const double sn = end_normal_stress(r, l) / c.k;
+    out.lengths.push_back(l);
+    out.end_stress.push_back(sn);
+    out.fc_bar.push_back(r.fc_bar);
+    return std::make_pair(sn, std::move(r));
+  };
+  const double l0 = c.t1 / std::cos(c.alpha);
+  double lo = l0;
+  auto [s_lo, r_lo] = eval(lo);
+  if (s_lo >= -opt.tol) {  // already unloaded at the minimum length
+    out.contact_length = lo;
+    out.final = std::move(r_lo);
+    return out;
+  }
+  double hi = lo;
+  CuttingResult r_hi;
+  bool found = false;
+  while (hi + opt.step * c.t1 <= opt.max_length * c.t1 + 1e-12) {
+    hi += opt.step * c.t1;
+    auto [s_hi, r] = eval(hi);
+    if (s_hi >= -opt.tol) {
+      found = true;
+      r_hi = std::move(r);
+      break;
+    }
+    lo = hi;
+    r_lo = std::move(r);
+  }
+  if (!found) {
+    out.restricted = true;
+    out.contact_length = lo;
+    out.final = std::move(r_lo);
+    return out;
+  }
+  for (int b = 0; b < opt.bisections; ++b) {
+    const double mid = 0.5 * (lo + hi);
+    auto [s_mid, r] = eval(mid);
+    if (s_mid >= -opt.tol) {
+      hi = mid;
+      r_hi = std::move(r);
+    } else {
+      lo = mid;
+    }
+  }
+  out.contact_length = hi;
+  out.final = std::move(r_hi);
+  return out;
+}
+
 }  // namespace cutbench::limit

@@ -49,6 +49,27 @@ double merchant_shear_angle(double alpha, double mu);        // Eq. 1: π/4 + (�
 double merchant_force_bar(double phi, double alpha, double mu);
 
 LimitModel cutting_model(const CuttingSetup& setup);
+
+// Mean normal contact stress over the last `fraction` of the contact length (σ_n/k, < 0 in
+// compression), from the lumped profile of a solved case.
+double end_normal_stress(const CuttingResult& r, double contact_length, double fraction = 0.1);
+
+// Unrestricted tool (paper sec. 2.1): starting from l = t1/cos α, increase l in steps until the
+// normal stress at the separation point approaches zero (end_normal_stress ≥ −tol), then bisect.
+struct ContactLengthOptions {
+  double step = 0.25;       // in t1
+  double max_length = 5.0;  // in t1
+  double tol = 0.05;        // |σ_n|/k regarded as zero
+  int bisections = 4;
+};
+struct ContactLengthResult {
+  double contact_length = 0.0;
+  bool restricted = false;  // σ_n < 0 up to max_length: no separation found
+  std::vector<double> lengths, end_stress, fc_bar;  // every solve
+  CuttingResult final;
+};
+ContactLengthResult search_contact_length(CuttingSetup setup, const ContactLengthOptions& opt = {},
+                                          const SocpSettings& settings = {});
 CuttingResult solve_cutting(const CuttingSetup& setup, const SocpSettings& settings = {});
 
 }  // namespace cutbench::limit

@@ -49,6 +49,18 @@ BOOST_AUTO_TEST_CASE(frictionless_chip_against_merchant) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(measured_shear_angle_frictionless) {
+  // single shear plane at φ = 45° (α = 0, μ = 0): the free-surface velocity turns at S.
+  // The band is smeared over the elements next to OS: φ* = 43.7° at n = 8, 44.6° at n = 16.
+  CuttingSetup c;
+  c.n = 8;
+  c.contact_length = 1.2;
+  const auto r = solve_cutting(c);
+  const double ps = measured_shear_angle(c, r) * 180.0 / M_PI;
+  BOOST_TEST_MESSAGE("phi* = " << ps << " deg for phi = 45 deg");
+  BOOST_TEST(std::abs(ps - 45.0) < 2.0);
+}
+
 BOOST_AUTO_TEST_CASE(contact_length_search_frictionless) {
   // α = 0, μ = 0, φ = 45°: the normal stress at the end of the contact vanishes at l ≈ 1.2–1.3 t1
   // (n = 4: 1.234, n = 8: 1.266); the paper: "on the order of t1" without friction.

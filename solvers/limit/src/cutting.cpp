@@ -219,4 +219,68 @@ ContactLengthResult search_contact_length(CuttingSetup c, const ContactLengthOpt
   return out;
 }
 
+double measured_shear_angle(const CuttingSetup& c, const CuttingResult& r) {
+  // Walk along the free surface (uncut top y = t1 up to S, then the chip back) and find where the
+  // direction of the material velocity is halfway between the inflow (0) and the rake face
+  // direction (90° − α); φ* is the angle of the line from the tool tip to that point.
+  const auto& mesh = r.model.mesh;
+  const Vector2d rr(std::sin(c.alpha), std::cos(c.alpha)), nr(std::cos(c.alpha), -std::sin(c.alpha));
+  const Vector2d S(-c.t1 / std::tan(c.phi), c.t1);
+  const double tol = 1e-8 * c.t1;
+  std::vector<std::pair<double, int>> path;  // (arc length from the inflow end, node)
+  std::vector<char> on(mesh.nodes.size(), 0);
+  for (const auto& e : boundary_edges(mesh)) {
+    for (int nd : {e.a, e.m, e.b}) on[static_cast<std::size_t>(nd)] = 1;
+  }
+  for (int i = 0; i < mesh.num_nodes(); ++i) {
+    if (!on[static_cast<std::size_t>(i)]) continue;
+    const Vector2d& x = mesh.nodes[static_cast<std::size_t>(i)];
+    if (std::abs(x.y() - c.t1) < tol && x.x() <= S.x() + tol) {
+      path.emplace_back(x.x() - S.x(), i);  // ≤ 0 before S
+    } else if (std::abs(x.dot(nr) - S.dot(nr)) < tol && (x - S).dot(rr) > tol) {
+      path.emplace_back((x - S).dot(rr), i);  // > 0 along the chip back
+    }
+  }
+  std::sort(path.begin(), path.end());
+  const double target = 0.5 * (0.5 * M_PI - c.alpha);
+  double prev_s = 0.0, prev_t = 0.0;
+  bool have = false;
+  for (const auto& [sv, i] : path) {
+    const double vx = r.solution.velocity[2 * i], vy = r.solution.velocity[2 * i + 1];
+    const double th = std::atan2(vy, vx);
+    if (have && prev_t < target && th >= target) {
+      const double f = (target - prev_t) / (th - prev_t);
+      const double sp = prev_s + f * (sv - prev_s);
+      const Vector2d P = sp <= 0.0 ? Vector2d(S.x() + sp, c.t1) : Vector2d(S + sp * rr);
+      return std::atan2(P.y(), -P.x());
+    }
+    prev_s = sv;
+    prev_t = th;
+    have = true;
+  }
+  throw NumericalError("measured_shear_angle: the free-surface velocity never turns toward the rake face");
+}
+
+SteadyStateResult steady_state(CuttingSetup c, const SteadyStateOptions& opt, const SocpSettings& settings) {
+  SteadyStateResult out;
+  const double phi_m = merchant_shear_angle(c.alpha, c.mu);
+  for (int it = 0; it < opt.max_iter; ++it) {
+    CuttingResult r = solve_cutting(c, settings);
+    const double ps = measured_shear_angle(c, r);
+    out.phi.push_back(c.phi);
+    out.phi_star.push_back(ps);
+    out.fc_bar.push_back(r.fc_bar);
+    // Molinari & Moufki: φ* ≥ φ_M → φ_M minimises F_c; otherwise φ = φ*
+    const double target = std::min(ps, phi_m);
+    const double next = c.phi + opt.relaxation * (target - c.phi);
+    out.final = std::move(r);
+    if (std::abs(next - c.phi) < opt.tol) {
+      out.converged = true;
+      break;
+    }
+    c.phi = next;
+  }
+  return out;
+}
+
 }  // namespace cutbench::limit

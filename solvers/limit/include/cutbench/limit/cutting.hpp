@@ -50,6 +50,25 @@ double merchant_force_bar(double phi, double alpha, double mu);
 
 LimitModel cutting_model(const CuttingSetup& setup);
 
+// Shear angle measured from a solution: the point of the free surface (uncut top, then chip back)
+// where the material velocity has turned halfway from the inflow direction to the rake-face
+// direction (linear interpolation between surface nodes); φ* is the angle of the line from the
+// tool tip to that point.
+double measured_shear_angle(const CuttingSetup& setup, const CuttingResult& r);
+
+// Steady-state loop of Fig. 4: φ ← φ* until |Δφ| < tol (Merchant's φ_M is kept when φ* ≥ φ_M).
+struct SteadyStateOptions {
+  int max_iter = 8;
+  double tol = 0.5 * 3.14159265358979323846 / 180.0;
+  double relaxation = 1.0;
+};
+struct SteadyStateResult {
+  std::vector<double> phi, phi_star, fc_bar;
+  bool converged = false;
+  CuttingResult final;
+};
+SteadyStateResult steady_state(CuttingSetup setup, const SteadyStateOptions& opt = {}, const SocpSettings& settings = {});
+
 // Mean normal contact stress over the last `fraction` of the contact length (σ_n/k, < 0 in
 // compression), from the lumped profile of a solved case.
 double end_normal_stress(const CuttingResult& r, double contact_length, double fraction = 0.1);

@@ -70,6 +70,32 @@ void add_snapshot(RunOutput& out, const LimitModel& m, const LimitSolution& s, d
   snap.add("v_x", "m/s", vx);
   snap.add("v_y", "m/s", vy);
   out.snapshots.push_back(std::move(snap));
+  // element centroids: mean stress of the three stress points (over k) and the non-dimensional
+  // plastic dissipation density
+  Snapshot el;
+  std::vector<double> sxx, syy, txy, dis;
+  for (int e = 0; e < m.mesh.num_elements(); ++e) {
+    const auto& c = m.mesh.elements[static_cast<std::size_t>(e)];
+    Eigen::Vector2d x = (m.mesh.nodes[static_cast<std::size_t>(c[0])] + m.mesh.nodes[static_cast<std::size_t>(c[1])] +
+                         m.mesh.nodes[static_cast<std::size_t>(c[2])]) / 3.0;
+    el.x.push_back(x.x() * length_scale);
+    el.y.push_back(x.y() * length_scale);
+    double a = 0, b = 0, t = 0;
+    for (int i = 0; i < 3; ++i) {
+      a += s.stress(3 * e + i, 0) / 3.0;
+      b += s.stress(3 * e + i, 1) / 3.0;
+      t += s.stress(3 * e + i, 2) / 3.0;
+    }
+    sxx.push_back(a / m.k);
+    syy.push_back(b / m.k);
+    txy.push_back(t / m.k);
+    dis.push_back(s.element_dissipation_density[e]);
+  }
+  el.add("sigma_xx_over_k", "1", sxx);
+  el.add("sigma_yy_over_k", "1", syy);
+  el.add("tau_xy_over_k", "1", txy);
+  el.add("dissipation_density", "1", dis);
+  out.snapshots.push_back(std::move(el));
 }
 
 SolverSpec strip_spec() {

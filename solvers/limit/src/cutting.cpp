@@ -19,34 +19,6 @@ double merchant_force_bar(double phi, double alpha, double mu) {
   return std::cos(beta - alpha) / (std::sin(phi) * std::cos(phi + beta - alpha));
 }
 
-namespace {
-// Merge by exact-ish coordinate match on a fine grid (meshes share identical edge nodes).
-Mesh merge_fast(const Mesh& a, const Mesh& b, double h) {
-  auto key = [h](const Vector2d& x) {
-    return std::make_pair(static_cast<long long>(std::llround(x.x() / h)), static_cast<long long>(std::llround(x.y() / h)));
-  };
-  std::map<std::pair<long long, long long>, int> index;
-  Mesh m = a;
-  for (int i = 0; i < a.num_nodes(); ++i) index.emplace(key(a.nodes[static_cast<std::size_t>(i)]), i);
-  std::vector<int> map(b.nodes.size());
-  for (std::size_t i = 0; i < b.nodes.size(); ++i) {
-    auto it = index.find(key(b.nodes[i]));
-    if (it != index.end()) {
-      map[i] = it->second;
-    } else {
-      map[i] = static_cast<int>(m.nodes.size());
-      m.nodes.push_back(b.nodes[i]);
-      m.is_vertex.push_back(b.is_vertex[i]);
-    }
-  }
-  for (const auto& el : b.elements) {
-    std::array<int, 6> e{};
-    for (std::size_t k = 0; k < 6; ++k) e[k] = map[static_cast<std::size_t>(el[k])];
-    m.elements.push_back(e);
-  }
-  return m;
-}
-}  // namespace
 
 LimitModel cutting_model(const CuttingSetup& c) {
   if (!(c.t1 > 0.0)) throw InputError("t1", "must be positive");
@@ -71,7 +43,7 @@ LimitModel cutting_model(const CuttingSetup& c) {
   const Mesh work = structured_quad({-Lw, 0.0}, O, S, {-Lw, t1}, xw, eta, Pattern::union_jack);
   const Mesh chip = structured_quad(O, O + Lc * r, S + Lc * r, S, xc, eta, Pattern::union_jack);
   LimitModel m;
-  m.mesh = merge_fast(work, chip, 1e-9 * t1);
+  m.mesh = merge(work, chip, 1e-9 * t1);
   m.k = c.k;
 
   const double tol = 1e-8 * t1;

@@ -142,14 +142,26 @@ std::vector<double> piecewise_grid(const std::vector<double>& breaks, const std:
 }
 
 Mesh merge(const Mesh& a, const Mesh& b, double tol) {
+  // nodes closer than tol are identified (hash on a grid of size tol, neighbouring cells checked)
+  auto cell = [tol](const Vector2d& x) {
+    return std::make_pair(static_cast<long long>(std::floor(x.x() / tol)), static_cast<long long>(std::floor(x.y() / tol)));
+  };
+  std::multimap<std::pair<long long, long long>, int> grid;
   Mesh m = a;
+  for (int i = 0; i < a.num_nodes(); ++i) grid.emplace(cell(a.nodes[static_cast<std::size_t>(i)]), i);
   std::vector<int> map(b.nodes.size());
   for (std::size_t i = 0; i < b.nodes.size(); ++i) {
+    const auto c = cell(b.nodes[i]);
     int found = -1;
-    for (std::size_t j = 0; j < a.nodes.size(); ++j) {
-      if ((a.nodes[j] - b.nodes[i]).norm() < tol) {
-        found = static_cast<int>(j);
-        break;
+    for (long long dx = -1; dx <= 1 && found < 0; ++dx) {
+      for (long long dy = -1; dy <= 1 && found < 0; ++dy) {
+        auto range = grid.equal_range({c.first + dx, c.second + dy});
+        for (auto it = range.first; it != range.second; ++it) {
+          if ((m.nodes[static_cast<std::size_t>(it->second)] - b.nodes[i]).norm() < tol) {
+            found = it->second;
+            break;
+          }
+        }
       }
     }
     if (found < 0) {
@@ -161,7 +173,7 @@ Mesh merge(const Mesh& a, const Mesh& b, double tol) {
   }
   for (const auto& el : b.elements) {
     std::array<int, 6> e{};
-    for (int k = 0; k < 6; ++k) e[static_cast<std::size_t>(k)] = map[static_cast<std::size_t>(el[static_cast<std::size_t>(k)])];
+    for (std::size_t k = 0; k < 6; ++k) e[k] = map[static_cast<std::size_t>(el[k])];
     m.elements.push_back(e);
   }
   return m;

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <memory>
 
@@ -364,17 +363,6 @@ public:
       analyzed_ = true;
     }
     const bool ok = ldlt_->factorize(K_);
-    if (!ok && std::getenv("CUTBENCH_SOCP_DEBUG")) {
-      int nonfinite = 0;
-      double mx = 0, mn = 1e300;
-      for (int j = 0; j < K_.outerSize(); ++j)
-        for (SpMat::InnerIterator it(K_, j); it; ++it) {
-          if (!std::isfinite(it.value())) ++nonfinite;
-          else { mx = std::max(mx, std::abs(it.value())); if (it.value() != 0) mn = std::min(mn, std::abs(it.value())); }
-        }
-      std::fprintf(stderr, "KKT failed: nonfinite %d max %g min %g lpw [%g %g]\n", nonfinite, mx, mn,
-                   w.lp_w.size() ? w.lp_w.minCoeff() : 0.0, w.lp_w.size() ? w.lp_w.maxCoeff() : 0.0);
-    }
     return ok;
   }
 

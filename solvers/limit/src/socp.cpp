@@ -309,9 +309,10 @@ private:
 // Quasi-definite KKT matrix: lower triangle stored; W² blocks rewritten each iteration.
 class Kkt {
 public:
-  Kkt(const SocpProblem& p, double delta, KktBackend backend, int max_refine, double dyn_eps, double dyn_delta)
+  Kkt(const SocpProblem& p, double delta, KktBackend backend, int max_refine, double refine_tol, double dyn_eps,
+      double dyn_delta)
       : p_(p), n_(p.n()), np_(static_cast<int>(p.A.rows())), m_(static_cast<int>(p.G.rows())),
-        delta_(delta), max_refine_(max_refine) {
+        delta_(delta), max_refine_(max_refine), refine_tol_(refine_tol) {
     if (backend == KktBackend::builtin) {
       std::vector<signed char> signs(static_cast<std::size_t>(n_ + np_ + m_), -1);
       std::fill(signs.begin(), signs.begin() + n_, static_cast<signed char>(1));
@@ -381,7 +382,7 @@ public:
 
   VectorXd solve(const VectorXd& rhs, int* steps) const {
     VectorXd x = ldlt_->solve(rhs);
-    const double tol = 1e-14 * (1.0 + rhs.norm());
+    const double tol = refine_tol_ * (1.0 + rhs.norm());
     double prev = std::numeric_limits<double>::infinity();
     int k = 0;
     for (; k < max_refine_; ++k) {
@@ -400,6 +401,7 @@ private:
   int n_, np_, m_;
   double delta_;
   int max_refine_;
+  double refine_tol_;
   SpMat K_, At_, Gt_;
   std::unique_ptr<LdltBackend> ldlt_;
   bool analyzed_ = false;
@@ -440,7 +442,7 @@ SocpResult solve_equilibrated(const SocpProblem& p, const SocpSettings& st) {
     for (SpMat::InnerIterator it(p.G, j); it; ++it) amax = std::max(amax, std::abs(it.value()));
   const double delta = std::max(1e-12, st.static_reg * std::max(1.0, amax));
 
-  Kkt kkt(p, delta, st.backend, st.max_refine, st.dynamic_reg_eps, st.dynamic_reg_delta);
+  Kkt kkt(p, delta, st.backend, st.max_refine, st.refine_tol, st.dynamic_reg_eps, st.dynamic_reg_delta);
   res.kkt_dim = kkt.dim();
 
   auto log = [&](const std::string& line) {

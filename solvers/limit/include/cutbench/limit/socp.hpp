@@ -76,6 +76,7 @@ struct SocpSettings {
   double dynamic_reg_eps = 1e-13;   // builtin LDLᵀ: pivots with sign·d ≤ eps …
   double dynamic_reg_delta = 2e-7;  // … are replaced by sign·delta
   int max_refine = 20;       // iterative-refinement steps per KKT solve
+  double refine_tol = 1e-10;  // stop refining when ‖residual‖ ≤ refine_tol (1 + ‖rhs‖)
   double step_fraction = 0.99;
   // If the iteration stalls, the best iterate is returned as optimal_inaccurate when its
   // residuals and relative gap are below this.

@@ -275,6 +275,7 @@ private:
 #pragma GCC diagnostic ignored "-Wnull-dereference"
 class CholmodLdlt final : public LdltBackend {
 public:
+  CholmodLdlt() { ldlt_.cholmod().print = 0; }  // breakdowns are handled (retry), not printed
   void analyze(const SpMat& K) override { ldlt_.analyzePattern(K); }
   bool factorize(const SpMat& K) override {
     ldlt_.factorize(K);
@@ -329,16 +330,25 @@ public:
   int dim() const { return n_ + np_ + m_; }
   long nnz() const { return static_cast<long>(K_.nonZeros()); }
 
-  // Builds K with the blocks W² (exact, without δ) and factorises K + reg.
+  // Builds K + reg with the blocks W² and factorises it. Backends without dynamic regularisation
+  // retry with a 100× larger δ (up to 1e-4) when the factorisation breaks down; the iterative
+  // refinement against the exact matrix removes δ again.
   bool update(const cone::NtScaling& w) {
     w_ = &w;
+    for (double d = delta_;; d *= 100.0) {
+      if (build_and_factorize(w, d)) return true;
+      if (d > 1e-4) return false;
+    }
+  }
+
+  bool build_and_factorize(const cone::NtScaling& w, double delta) {
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(static_cast<std::size_t>(n_ + np_ + m_ + p_.A.nonZeros() + p_.G.nonZeros() + 9 * m_));
-    for (int i = 0; i < n_; ++i) t.emplace_back(i, i, delta_);
+    for (int i = 0; i < n_; ++i) t.emplace_back(i, i, delta);
     for (int j = 0; j < p_.A.outerSize(); ++j) {
       for (SpMat::InnerIterator it(p_.A, j); it; ++it) t.emplace_back(n_ + it.row(), j, it.value());
     }
-    for (int i = 0; i < np_; ++i) t.emplace_back(n_ + i, n_ + i, -delta_);
+    for (int i = 0; i < np_; ++i) t.emplace_back(n_ + i, n_ + i, -delta);
     for (int j = 0; j < p_.G.outerSize(); ++j) {
       for (SpMat::InnerIterator it(p_.G, j); it; ++it) t.emplace_back(n_ + np_ + it.row(), j, it.value());
     }
@@ -346,14 +356,14 @@ public:
     const auto& k = p_.cones;
     for (int i = 0; i < k.nonneg; ++i) {
       const double wi = w.lp_w[i];
-      t.emplace_back(o0 + i, o0 + i, -wi * wi - delta_);
+      t.emplace_back(o0 + i, o0 + i, -wi * wi - delta);
     }
     int o = k.nonneg;
     for (std::size_t c = 0; c < k.soc.size(); ++c) {
       const int m = k.soc[c];
       const Eigen::MatrixXd w2 = w.soc_w[c] * w.soc_w[c];
       for (int j = 0; j < m; ++j) {
-        for (int i = j; i < m; ++i) t.emplace_back(o0 + o + i, o0 + o + j, -w2(i, j) - (i == j ? delta_ : 0.0));
+        for (int i = j; i < m; ++i) t.emplace_back(o0 + o + i, o0 + o + j, -w2(i, j) - (i == j ? delta : 0.0));
       }
       o += m;
     }

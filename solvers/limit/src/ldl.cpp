@@ -128,6 +128,16 @@ int QuasiDefiniteLdl::factorize(const SpMat& K, double eps, double delta) {
   return regularised;
 }
 
+bool QuasiDefiniteLdl::finite() const {
+  for (double v : d_) {
+    if (!std::isfinite(v)) return false;
+  }
+  for (std::size_t p = 0; p < static_cast<std::size_t>(lp_.back()); ++p) {
+    if (!std::isfinite(lx_[p])) return false;
+  }
+  return true;
+}
+
 Eigen::VectorXd QuasiDefiniteLdl::solve(const Eigen::VectorXd& b) const {
   std::vector<double> x(static_cast<std::size_t>(n_));
   for (int i = 0; i < n_; ++i) x[static_cast<std::size_t>(i)] = b[perm_[static_cast<std::size_t>(i)]];

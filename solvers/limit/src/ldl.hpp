@@ -24,6 +24,7 @@ public:
   // Returns the number of regularised pivots.
   int factorize(const SpMat& K, double eps, double delta);
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  bool finite() const;  // all entries of L and D finite
   long factor_nnz() const { return lp_.empty() ? 0 : static_cast<long>(lp_.back()); }
 
 private:

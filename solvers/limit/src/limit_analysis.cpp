@@ -246,7 +246,7 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
                            "over-constrained or the load is carried by the supports)");
     if (r.status == SocpStatus::primal_infeasible)
       throw NumericalError("limit analysis: no admissible stress field (dead loads exceed the capacity)");
-    if (r.x.size() == 0) throw NumericalError("limit analysis: SOCP failed: " + to_string(r.status) + " " + r.message);
+    throw NumericalError("limit analysis: SOCP failed: " + to_string(r.status) + (r.message.empty() ? "" : ": " + r.message));
   }
   sol.collapse = -r.pcost + offset;
 

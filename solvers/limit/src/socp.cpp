@@ -296,7 +296,7 @@ public:
   void analyze(const SpMat& K) override { ldl_.analyze(K, signs_); }
   bool factorize(const SpMat& K) override {
     regularised_ = ldl_.factorize(K, eps_, delta_);
-    return true;
+    return ldl_.finite();  // pivot growth to inf/NaN: let the caller retry with a larger δ
   }
   VectorXd solve(const VectorXd& r) override { return ldl_.solve(r); }
 

@@ -48,6 +48,24 @@ BOOST_AUTO_TEST_CASE(graded_grid_ends_and_ratio) {
   BOOST_TEST(std::abs((h[3] - h[2]) / (h[4] - h[3]) - 2.0) < 1e-12);
 }
 
+BOOST_AUTO_TEST_CASE(refine_is_conforming) {
+  const Mesh m0 = structured_quad({0, 0}, {2, 0}, {2, 1}, {0, 1}, uniform_grid(4), uniform_grid(2));
+  const Mesh m1 = refine(m0, {0, 5, 6, 11});
+  const Mesh m2 = refine(m1, {0, 1, 2, 3, 4});
+  for (const Mesh* m : {&m1, &m2}) {
+    double area = 0.0, perimeter = 0.0;
+    for (int e = 0; e < m->num_elements(); ++e) {
+      BOOST_TEST(m->area(e) > 0.0);
+      area += m->area(e);
+    }
+    for (const auto& e : boundary_edges(*m)) perimeter += (m->nodes[static_cast<std::size_t>(e.b)] - m->nodes[static_cast<std::size_t>(e.a)]).norm();
+    BOOST_TEST(std::abs(area - 2.0) < 1e-12);
+    BOOST_TEST(std::abs(perimeter - 6.0) < 1e-12);  // no hanging nodes: interior edges are shared
+  }
+  BOOST_TEST(m1.num_elements() > m0.num_elements());
+  BOOST_TEST(m2.num_elements() > m1.num_elements());
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(socp_singular)

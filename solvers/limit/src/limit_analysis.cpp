@@ -1,5 +1,6 @@
 #include "cutbench/limit/limit_analysis.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -345,8 +346,13 @@ LimitModel prandtl_punch_model(double B, int n, double grading, Pattern pattern)
   const int n1 = std::max(2, n), n2 = std::max(2, 2 * n), ny = std::max(2, 2 * n);
   const auto xi = piecewise_grid({0.0, B / L, 1.0}, {graded_grid(n1, grading, 1.0), graded_grid(n2, grading, 0.0)});
   const auto eta = graded_grid(ny, grading, 1.0);
+  return prandtl_punch_on_mesh(structured_quad({0, -D}, {L, -D}, {L, 0}, {0, 0}, xi, eta, pattern), B);
+}
+
+LimitModel prandtl_punch_on_mesh(Mesh mesh, double B) {
+  const double L = 5.0 * B, D = 3.0 * B;
   LimitModel m;
-  m.mesh = structured_quad({0, -D}, {L, -D}, {L, 0}, {0, 0}, xi, eta, pattern);
+  m.mesh = std::move(mesh);
   const double tol = 1e-9 * B;
   for (int i = 0; i < m.mesh.num_nodes(); ++i) {
     const Vector2d& x = m.mesh.nodes[static_cast<std::size_t>(i)];
@@ -359,6 +365,41 @@ LimitModel prandtl_punch_model(double B, int n, double grading, Pattern pattern)
     if (top && x.x() <= B + tol) m.fix(i, 1, -1.0);                  // smooth rigid punch
   }
   return m;
+}
+
+std::vector<AdaptStep> adapt_limit(const Mesh& initial, const std::function<LimitModel(Mesh)>& build,
+                                   const AdaptOptions& opt, const SocpSettings& settings, LimitSolution* final_solution,
+                                   Mesh* final_mesh) {
+  std::vector<AdaptStep> steps;
+  Mesh mesh = initial;
+  LimitSolution sol;
+  for (int step = 0;; ++step) {
+    const LimitModel model = build(mesh);
+    sol = solve_limit(model, settings);
+    steps.push_back({model.mesh.num_elements(), sol.collapse, sol.socp.seconds, sol.socp.iterations});
+    if (step == opt.steps) break;
+    // Dörfler marking on the element plastic dissipation
+    const int ne = model.mesh.num_elements();
+    std::vector<std::pair<double, int>> d(static_cast<std::size_t>(ne));
+    double total = 0.0;
+    for (int e = 0; e < ne; ++e) {
+      const double de = sol.point_dissipation.segment(3 * e, 3).sum();
+      d[static_cast<std::size_t>(e)] = {de, e};
+      total += de;
+    }
+    std::sort(d.begin(), d.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<int> marked;
+    double acc = 0.0;
+    for (const auto& [de, e] : d) {
+      if (acc >= opt.fraction * total) break;
+      marked.push_back(e);
+      acc += de;
+    }
+    mesh = refine(model.mesh, marked);
+  }
+  if (final_solution) *final_solution = std::move(sol);
+  if (final_mesh) *final_mesh = std::move(mesh);
+  return steps;
 }
 
 LimitModel frictional_block_model(double W, double H, double q, double mu, int nx, int ny) {

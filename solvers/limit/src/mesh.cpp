@@ -179,6 +179,94 @@ Mesh merge(const Mesh& a, const Mesh& b, double tol) {
   return m;
 }
 
+Mesh refine(const Mesh& mesh, const std::vector<int>& marked) {
+  // vertices only (renumbered), as a linear triangulation
+  std::vector<int> vid(mesh.nodes.size(), -1);
+  std::vector<Vector2d> verts;
+  std::vector<std::array<int, 3>> tris;
+  for (const auto& el : mesh.elements) {
+    std::array<int, 3> t{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      int& v = vid[static_cast<std::size_t>(el[k])];
+      if (v < 0) {
+        v = static_cast<int>(verts.size());
+        verts.push_back(mesh.nodes[static_cast<std::size_t>(el[k])]);
+      }
+      t[k] = v;
+    }
+    tris.push_back(t);
+  }
+  using Edge = std::pair<int, int>;
+  auto key = [](int a, int b) { return Edge(std::min(a, b), std::max(a, b)); };
+  auto longest = [&](const std::array<int, 3>& t) {  // local index k of the longest edge (t[k], t[k+1])
+    int best = 0;
+    double bl = -1.0;
+    Edge bk{-1, -1};
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      const double l = (verts[static_cast<std::size_t>(a)] - verts[static_cast<std::size_t>(b)]).squaredNorm();
+      const Edge e = key(a, b);
+      // ties broken by the edge key, so that neighbours agree
+      if (l > bl * (1.0 + 1e-12) || (std::abs(l - bl) <= 1e-12 * bl && e < bk)) {
+        bl = l;
+        best = k;
+        bk = e;
+      }
+    }
+    return best;
+  };
+  std::map<Edge, int> split;  // marked edge → midpoint vertex (assigned later)
+  auto edge_of = [&](const std::array<int, 3>& t, int k) {
+    return key(t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]);
+  };
+  for (int e : marked) {
+    const auto& t = tris[static_cast<std::size_t>(e)];
+    split.emplace(edge_of(t, longest(t)), -1);
+  }
+  // closure: an element with any marked edge gets its longest edge marked
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& t : tris) {
+      bool any = false;
+      for (int k = 0; k < 3; ++k) any = any || split.count(edge_of(t, k));
+      if (!any) continue;
+      if (split.emplace(edge_of(t, longest(t)), -1).second) changed = true;
+    }
+  }
+  for (auto& [e, mid] : split) {
+    mid = static_cast<int>(verts.size());
+    verts.push_back(0.5 * (verts[static_cast<std::size_t>(e.first)] + verts[static_cast<std::size_t>(e.second)]));
+  }
+  std::vector<std::array<int, 3>> out;
+  for (const auto& t : tris) {
+    const int k = longest(t);
+    const auto it = split.find(edge_of(t, k));
+    if (it == split.end()) {
+      out.push_back(t);
+      continue;
+    }
+    // rotate so that the longest edge is (a, b), opposite vertex c
+    const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)],
+              c = t[static_cast<std::size_t>((k + 2) % 3)];
+    const int m = it->second;
+    const auto bc = split.find(key(b, c));
+    const auto ca = split.find(key(c, a));
+    if (bc != split.end()) {
+      out.push_back({m, b, bc->second});
+      out.push_back({m, bc->second, c});
+    } else {
+      out.push_back({m, b, c});
+    }
+    if (ca != split.end()) {
+      out.push_back({a, m, ca->second});
+      out.push_back({ca->second, m, c});
+    } else {
+      out.push_back({a, m, c});
+    }
+  }
+  return make_t6(verts, out);
+}
+
 std::vector<int> boundary_nodes(const Mesh& mesh, const std::function<bool(const Vector2d&)>& pred) {
   std::vector<char> on(mesh.nodes.size(), 0);
   for (const auto& e : boundary_edges(mesh)) {

@@ -19,6 +19,7 @@
 // so that Fᵀv = 1 in load mode), the cone multipliers the plastic strain rates. See
 // solvers/limit/README.md. Units: any consistent set; the problem is best scaled so that k and
 // the lengths are O(1) (the runners non-dimensionalise by k and a reference length).
+#include <functional>
 #include <limits>
 #include <map>
 #include <vector>
@@ -101,6 +102,26 @@ LimitModel strip_tension_model(double length, double width, int nx, int ny, Patt
 // Smooth rigid punch of half-width B on a half-space (half model), imposed velocity −1.
 // Exact collapse power per unit thickness: (2 + π) k B. `n` controls the mesh density.
 LimitModel prandtl_punch_model(double half_width, int n, double grading = 1.05, Pattern pattern = Pattern::union_jack);
+// The same boundary conditions on any mesh of [0, 5B] × [−3B, 0] (e.g. after refinement).
+LimitModel prandtl_punch_on_mesh(Mesh mesh, double half_width);
+
+// Adaptive refinement driven by the plastic dissipation: solve, mark the elements carrying the
+// share `fraction` of the dissipation (Dörfler), bisect them (conforming longest-edge), rebuild
+// the model with `build`, repeat `steps` times. Isotropic (the paper's is anisotropic).
+struct AdaptOptions {
+  int steps = 3;
+  double fraction = 0.5;
+};
+struct AdaptStep {
+  int elements = 0;
+  double collapse = 0.0;
+  double seconds = 0.0;
+  int iterations = 0;
+};
+std::vector<AdaptStep> adapt_limit(const Mesh& initial, const std::function<LimitModel(Mesh)>& build,
+                                   const AdaptOptions& opt = {}, const SocpSettings& settings = {},
+                                   LimitSolution* final_solution = nullptr, Mesh* final_mesh = nullptr);
+
 // Block W × H on a frictional rigid base (μ), dead pressure q on top, horizontal traction λ on
 // the left face. Exact: λ H = μ q W while μ q ≤ k (bounded by k W otherwise).
 LimitModel frictional_block_model(double width, double height, double q, double mu, int nx, int ny);

@@ -51,6 +51,12 @@ std::vector<double> piecewise_grid(const std::vector<double>& breaks, const std:
 // Merge meshes, identifying nodes closer than tol.
 Mesh merge(const Mesh& a, const Mesh& b, double tol = 1e-10);
 
+// Conforming longest-edge bisection: every marked element has its longest edge bisected; the
+// closure also bisects the longest edge of any element that has a bisected edge, so the result
+// is conforming; elements end up split into 2, 3 or 4. Mid-side nodes are rebuilt (straight
+// edges). Returns the refined mesh.
+Mesh refine(const Mesh& mesh, const std::vector<int>& marked);
+
 // Nodes on the boundary whose coordinates satisfy pred (vertex and mid-side nodes).
 std::vector<int> boundary_nodes(const Mesh& mesh, const std::function<bool(const Eigen::Vector2d&)>& pred);
 

@@ -49,6 +49,20 @@ BOOST_AUTO_TEST_CASE(frictionless_chip_against_merchant) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(frictionless_chip_adaptive) {
+  // α = 0, μ = 0, φ = 45°, l = 1.2 t1: dissipation-driven refinement from n = 4:
+  // F̄c 2.033 (136 elements) → 2.007 with 343 elements after 5 steps (uniform n = 12: 2.005, 1032).
+  CuttingSetup c;
+  c.n = 4;
+  c.contact_length = 1.2;
+  AdaptOptions opt;
+  opt.steps = 5;
+  const auto steps = adapt_limit(cutting_model(c).mesh, [&](Mesh m) { return cutting_model_on_mesh(std::move(m), c); }, opt);
+  for (const auto& s : steps) BOOST_TEST_MESSAGE("adaptive chip: elements " << s.elements << " Fc_bar " << s.collapse);
+  BOOST_TEST(std::abs(steps.back().collapse / 2.0 - 1.0) < 0.005);
+  BOOST_TEST(steps.back().elements < 400);
+}
+
 BOOST_AUTO_TEST_CASE(measured_shear_angle_frictionless) {
   // single shear plane at φ = 45° (α = 0, μ = 0): the free-surface velocity turns at S.
   // The band is smeared over the elements next to OS: φ* = 43.7° at n = 8, 44.6° at n = 16.

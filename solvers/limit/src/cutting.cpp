@@ -42,8 +42,16 @@ LimitModel cutting_model(const CuttingSetup& c) {
   const auto xc = piecewise_grid({0.0, lb, 1.0}, {uniform_grid(nc1), graded_grid(nc2, 1.1, 0.0)});
   const Mesh work = structured_quad({-Lw, 0.0}, O, S, {-Lw, t1}, xw, eta, Pattern::union_jack);
   const Mesh chip = structured_quad(O, O + Lc * r, S + Lc * r, S, xc, eta, Pattern::union_jack);
+  return cutting_model_on_mesh(merge(work, chip, 1e-9 * t1), c);
+}
+
+LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
+  const double t1 = c.t1;
+  const Vector2d r(std::sin(c.alpha), std::cos(c.alpha));
+  const Vector2d S(-t1 / std::tan(c.phi), t1);
+  const double Lw = c.inflow_length * t1 - S.x();  // inflow boundary at x = −Lw
   LimitModel m;
-  m.mesh = merge(work, chip, 1e-9 * t1);
+  m.mesh = std::move(mesh);
   m.k = c.k;
 
   const double tol = 1e-8 * t1;
@@ -73,8 +81,12 @@ LimitModel cutting_model(const CuttingSetup& c) {
 }
 
 CuttingResult solve_cutting(const CuttingSetup& c, const SocpSettings& settings) {
+  return solve_cutting_on(cutting_model(c), c, settings);
+}
+
+CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const SocpSettings& settings) {
   CuttingResult res;
-  res.model = cutting_model(c);
+  res.model = std::move(model);
   res.t2 = chip_thickness(c.t1, c.phi, c.alpha);
   if (c.mu > 0.0 && c.coulomb_fixed_point) {
     res.solution = solve_limit_coulomb(res.model, settings, {}, &res.coulomb);

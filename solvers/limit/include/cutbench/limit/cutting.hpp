@@ -49,6 +49,8 @@ double merchant_shear_angle(double alpha, double mu);        // Eq. 1: Ï€/4 + (Î
 double merchant_force_bar(double phi, double alpha, double mu);
 
 LimitModel cutting_model(const CuttingSetup& setup);
+// Boundary conditions of the cutting problem on any mesh of the same domain (e.g. refined).
+LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& setup);
 
 // Shear angle measured from a solution: the point of the free surface (uncut top, then chip back)
 // where the material velocity has turned halfway from the inflow direction to the rake-face
@@ -90,5 +92,6 @@ struct ContactLengthResult {
 ContactLengthResult search_contact_length(CuttingSetup setup, const ContactLengthOptions& opt = {},
                                           const SocpSettings& settings = {});
 CuttingResult solve_cutting(const CuttingSetup& setup, const SocpSettings& settings = {});
+CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& setup, const SocpSettings& settings = {});
 
 }  // namespace cutbench::limit

@@ -1,0 +1,97 @@
+#pragma once
+// Steady-state orthogonal cutting by mixed limit analysis (Figueiredo et al. 2024, Fig. 1).
+//
+// Tool frame: the tool is fixed with its tip at the origin, the rake face leaves the tip along
+// r = (sin α, cos α). The workpiece layer of uncut thickness t1 (0 ≤ y ≤ t1) enters from the
+// left with the imposed unit velocity (1, 0); the cutting line y = 0 is a smooth rigid plane
+// (v_y = 0, v_x free: "boundary AI allows horizontal movement"). The chip is the parallelogram
+// bounded by the shear plane OS (S = (−t1 cot φ, t1)), the rake face, and its back surface at
+// distance t2 = t1 cos(φ − α)/sin φ (Eq. 2). The rake face is in permanent contact (w_n = 0)
+// with Coulomb friction μ over the contact length l from the tip; beyond l the chip is free.
+#include <vector>
+
+#include "cutbench/limit/limit_analysis.hpp"
+
+namespace cutbench::limit {
+
+struct CuttingSetup {
+  double t1 = 1.0;          // uncut chip thickness (non-dimensional lengths: t1 = 1 is natural)
+  double alpha = 0.0;       // rake angle [rad]
+  double phi = 0.785398163397448;  // shear angle [rad]
+  double contact_length = 1.0;     // l, measured along the rake face from the tip
+  double mu = 0.0;          // Coulomb coefficient on the rake face
+  double k = 1.0;           // shear yield stress
+  double inflow_length = 2.0;  // length of uncut layer ahead of the shear plane, in t1
+  double chip_extra = 2.0;     // chip length beyond the contact, in t2
+  int n = 8;                // cells across t1 (mesh density)
+  // μ > 0: true = non-associated Coulomb with w_n = 0 by the fixed point on the pressure
+  // (solve_limit_coulomb); false = the coupled (associated) cone |r_t| + μ r_n ≤ 0.
+  bool coulomb_fixed_point = true;
+};
+
+struct CuttingResult {
+  LimitModel model;
+  LimitSolution solution;
+  CoulombReport coulomb;  // fixed-point history (empty when μ = 0 or not used)
+  double t2 = 0.0;
+  double cutting_force = 0.0;  // F_c per unit width (= collapse power for unit speed)
+  double feed_force = 0.0;     // F_f per unit width: force on the tool normal to the cut surface (+y)
+  double fc_bar = 0.0;         // F_c / (k t1)
+  double ff_bar = 0.0;
+  // rake-face profile, ordered by s (distance from the tip), lumped nodal values
+  std::vector<double> s, sigma_n, tau, slip;
+  double stick_fraction = 0.0;  // fraction of the contact length with |w_t| < 1e-6 (node-wise)
+};
+
+double chip_thickness(double t1, double phi, double alpha);  // Eq. 2
+double merchant_shear_angle(double alpha, double mu);        // Eq. 1: π/4 + (α − β)/2
+// Merchant's cutting force F_c/(k t1 w) = cos(β − α) / (sin φ cos(φ + β − α)).
+double merchant_force_bar(double phi, double alpha, double mu);
+
+LimitModel cutting_model(const CuttingSetup& setup);
+// Boundary conditions of the cutting problem on any mesh of the same domain (e.g. refined).
+LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& setup);
+
+// Shear angle measured from a solution: the point of the free surface (uncut top, then chip back)
+// where the material velocity has turned halfway from the inflow direction to the rake-face
+// direction (linear interpolation between surface nodes); φ* is the angle of the line from the
+// tool tip to that point.
+double measured_shear_angle(const CuttingSetup& setup, const CuttingResult& r);
+
+// Steady-state loop of Fig. 4: φ ← φ* until |Δφ| < tol (Merchant's φ_M is kept when φ* ≥ φ_M).
+struct SteadyStateOptions {
+  int max_iter = 8;
+  double tol = 0.5 * 3.14159265358979323846 / 180.0;
+  double relaxation = 1.0;
+};
+struct SteadyStateResult {
+  std::vector<double> phi, phi_star, fc_bar;
+  bool converged = false;
+  CuttingResult final;
+};
+SteadyStateResult steady_state(CuttingSetup setup, const SteadyStateOptions& opt = {}, const SocpSettings& settings = {});
+
+// Mean normal contact stress over the last `fraction` of the contact length (σ_n/k, < 0 in
+// compression), from the lumped profile of a solved case.
+double end_normal_stress(const CuttingResult& r, double contact_length, double fraction = 0.1);
+
+// Unrestricted tool (paper sec. 2.1): starting from l = t1/cos α, increase l in steps until the
+// normal stress at the separation point approaches zero (end_normal_stress ≥ −tol), then bisect.
+struct ContactLengthOptions {
+  double step = 0.25;       // in t1
+  double max_length = 5.0;  // in t1
+  double tol = 0.05;        // |σ_n|/k regarded as zero
+  int bisections = 4;
+};
+struct ContactLengthResult {
+  double contact_length = 0.0;
+  bool restricted = false;  // σ_n < 0 up to max_length: no separation found
+  std::vector<double> lengths, end_stress, fc_bar;  // every solve
+  CuttingResult final;
+};
+ContactLengthResult search_contact_length(CuttingSetup setup, const ContactLengthOptions& opt = {},
+                                          const SocpSettings& settings = {});
+CuttingResult solve_cutting(const CuttingSetup& setup, const SocpSettings& settings = {});
+CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& setup, const SocpSettings& settings = {});
+
+}  // namespace cutbench::limit

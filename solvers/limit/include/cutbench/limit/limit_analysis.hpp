@@ -1,0 +1,129 @@
+#pragma once
+// Mixed limit analysis, plane strain, von Mises, with Coulomb contact against fixed rigid bodies.
+//
+// Discretisation: T6 triangles for the velocity; a linear, element-wise discontinuous stress
+// field given by its values at the three vertices of each element (the "stress points"); the
+// virtual power ∫ σ : ε(v) integrated exactly (3-point rule). Per stress point the unknowns are
+// (p, q, τ) = ((σxx+σyy)/2, (σxx−σyy)/2, τxy) and von Mises reads ‖(q, τ)‖ ≤ k (a 3-D cone).
+//
+// The discrete problem, static (lower-bound-type mixed) form, solved as an SOCP:
+//
+//   maximise   λ                       (load mode: reference load F × λ, plus dead load F0)
+//   or         Σ_fixed v̄_d (Bᵀσ − F0)_d (velocity mode: power of the imposed velocities)
+//   s.t.       (Bᵀσ)_d = λ F_d + F0_d  for every free velocity dof d
+//              t·(Bᵀσ)_c − r_t = λ F_t + F0_t  at every contact node c (tangential)
+//              |r_t| + μ r_n ≤ 0 with r_n = n·(Bᵀσ − λF − F0)_c   (two linear rows; w_n = 0)
+//              ‖(q, τ)_i‖ ≤ k at every stress point i
+//
+// Its dual is the kinematic problem: the equality multipliers are the velocities (normalised
+// so that Fᵀv = 1 in load mode), the cone multipliers the plastic strain rates. See
+// solvers/limit/README.md. Units: any consistent set; the problem is best scaled so that k and
+// the lengths are O(1) (the runners non-dimensionalise by k and a reference length).
+#include <functional>
+#include <limits>
+#include <map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "cutbench/limit/mesh.hpp"
+#include "cutbench/limit/socp.hpp"
+
+namespace cutbench::limit {
+
+struct ContactNode {
+  int node = 0;
+  Eigen::Vector2d normal{0.0, -1.0};  // outward unit normal of the body at the node
+  double mu = 0.0;                     // Coulomb coefficient
+  // NaN: Coulomb coupled to the current normal reaction (|r_t| + μ r_n ≤ 0, associated form).
+  // Finite g: Tresca-type bound |r_t| ≤ g (one step of the fixed point on the pressure).
+  double tresca_bound = std::numeric_limits<double>::quiet_NaN();
+};
+
+struct LimitModel {
+  Mesh mesh;
+  double k = 1.0;                 // shear yield stress
+  std::map<int, double> fixed;    // velocity dof (2·node + component) → imposed value
+  Eigen::VectorXd load;           // reference load F (2·nodes) or empty
+  Eigen::VectorXd dead_load;      // fixed load F0 (2·nodes) or empty
+  std::vector<ContactNode> contacts;
+
+  void fix(int node, int component, double value = 0.0) { fixed[2 * node + component] = value; }
+  // Consistent nodal forces of a uniform traction t on every boundary edge whose midpoint
+  // satisfies `on` (added to F, or to F0 if dead). Returns the loaded length.
+  double add_traction(const std::function<bool(const Eigen::Vector2d&)>& on, const Eigen::Vector2d& t, bool dead);
+  // Permanent contact (w_n = 0) with friction μ at the given nodes; the normal is the outward
+  // normal of the boundary there (averaged over the adjacent boundary edges).
+  void add_contact(const std::vector<int>& nodes, double mu);
+  // Same with a given outward normal (straight contact faces).
+  void add_contact(const std::vector<int>& nodes, double mu, const Eigen::Vector2d& normal);
+};
+
+struct LimitSolution {
+  SocpResult socp;
+  bool load_mode = true;
+  double collapse = 0.0;          // λ (load mode) or collapse power (velocity mode)
+  Eigen::VectorXd velocity;       // nodal velocities (2·nodes), v_x, v_y interleaved
+  // per stress point (3 per element, at the element vertices): σxx, σyy, τxy, and the plastic
+  // dissipation k·z0 attached to the point (power, not density)
+  Eigen::MatrixXd stress;         // (3·elements) × 3
+  Eigen::VectorXd point_dissipation;
+  Eigen::VectorXd element_dissipation_density;  // per element: Σ points / area
+  double plastic_dissipation = 0.0;
+  // per contact node (same order as LimitModel::contacts)
+  Eigen::VectorXd contact_rn, contact_rt, contact_wt;
+  double friction_dissipation = 0.0;  // Σ |r_t w_t|
+};
+
+LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings = {});
+
+// Coulomb friction with permanent contact (w_n = 0) by a fixed point on the contact pressure:
+// solve with |r_t| ≤ μ p_k (p_k from the previous solution, first from the coupled form), update
+// p_{k+1} = −r_n, until max|Δp|/max p < tol. Each step is a limit problem with a Tresca-type
+// friction dissipation μ p_k |w_t|; at the fixed point the friction is non-associated Coulomb
+// (no dilatancy), which the coupled form is not (see README).
+struct CoulombOptions {
+  int max_iter = 30;
+  double tol = 1e-3;
+  double relaxation = 1.0;
+};
+struct CoulombReport {
+  int iterations = 0;
+  bool converged = false;
+  double change = 0.0;
+  std::vector<double> collapse_history;
+};
+LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings = {}, const CoulombOptions& opt = {},
+                                  CoulombReport* report = nullptr);
+
+// Built-in verification problems (non-dimensional: k = 1 unless given).
+// Plane-strain strip in tension, length L, width w: exact λ = 2 k (traction), load 2 k w.
+LimitModel strip_tension_model(double length, double width, int nx, int ny, Pattern pattern = Pattern::union_jack);
+// Smooth rigid punch of half-width B on a half-space (half model), imposed velocity −1.
+// Exact collapse power per unit thickness: (2 + π) k B. `n` controls the mesh density.
+LimitModel prandtl_punch_model(double half_width, int n, double grading = 1.05, Pattern pattern = Pattern::union_jack);
+// The same boundary conditions on any mesh of [0, 5B] × [−3B, 0] (e.g. after refinement).
+LimitModel prandtl_punch_on_mesh(Mesh mesh, double half_width);
+
+// Adaptive refinement driven by the plastic dissipation: solve, mark the elements carrying the
+// share `fraction` of the dissipation (Dörfler), bisect them (conforming longest-edge), rebuild
+// the model with `build`, repeat `steps` times. Isotropic (the paper's is anisotropic).
+struct AdaptOptions {
+  int steps = 3;
+  double fraction = 0.5;
+};
+struct AdaptStep {
+  int elements = 0;
+  double collapse = 0.0;
+  double seconds = 0.0;
+  int iterations = 0;
+};
+std::vector<AdaptStep> adapt_limit(const Mesh& initial, const std::function<LimitModel(Mesh)>& build,
+                                   const AdaptOptions& opt = {}, const SocpSettings& settings = {},
+                                   LimitSolution* final_solution = nullptr, Mesh* final_mesh = nullptr);
+
+// Block W × H on a frictional rigid base (μ), dead pressure q on top, horizontal traction λ on
+// the left face. Exact: λ H = μ q W while μ q ≤ k (bounded by k W otherwise).
+LimitModel frictional_block_model(double width, double height, double q, double mu, int nx, int ny);
+
+}  // namespace cutbench::limit

@@ -1,0 +1,270 @@
+#include "cutbench/limit/cutting.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "cutbench/common/errors.hpp"
+
+namespace cutbench::limit {
+
+using Eigen::Vector2d;
+
+double chip_thickness(double t1, double phi, double alpha) { return t1 * std::cos(phi - alpha) / std::sin(phi); }
+
+double merchant_shear_angle(double alpha, double mu) { return 0.25 * M_PI + 0.5 * (alpha - std::atan(mu)); }
+
+double merchant_force_bar(double phi, double alpha, double mu) {
+  const double beta = std::atan(mu);
+  return std::cos(beta - alpha) / (std::sin(phi) * std::cos(phi + beta - alpha));
+}
+
+
+LimitModel cutting_model(const CuttingSetup& c) {
+  if (!(c.t1 > 0.0)) throw InputError("t1", "must be positive");
+  if (!(c.phi > 0.0 && c.phi < 0.5 * M_PI)) throw InputError("phi", "shear angle must be in (0, 90) deg");
+  if (!(std::abs(c.alpha) < 0.5 * M_PI - c.phi + 0.5 * M_PI)) throw InputError("alpha", "rake angle out of range");
+  if (!(c.contact_length > 0.0)) throw InputError("contact_length", "must be positive");
+  if (c.n < 2) throw InputError("n", "need at least 2 cells across t1");
+  const double t1 = c.t1, t2 = chip_thickness(t1, c.phi, c.alpha);
+  const Vector2d O(0.0, 0.0), r(std::sin(c.alpha), std::cos(c.alpha));
+  const Vector2d S(-t1 / std::tan(c.phi), t1);
+  const double Lw = c.inflow_length * t1 - S.x();  // inflow boundary at x = −Lw
+  const double Lc = c.contact_length + c.chip_extra * t2;
+  const int ny = c.n;
+  // cells: work region along x graded toward the shear plane; chip along r with a break at l
+  const int nxw = std::max(2, static_cast<int>(std::ceil(c.n * Lw / t1 * 0.5)));
+  const int nc1 = std::max(2, static_cast<int>(std::ceil(c.n * c.contact_length / t1)));
+  const int nc2 = std::max(2, static_cast<int>(std::ceil(c.n * (Lc - c.contact_length) / t1 * 0.5)));
+  const auto eta = uniform_grid(ny);
+  const auto xw = graded_grid(nxw, 1.1, 1.0);
+  const double lb = c.contact_length / Lc;
+  const auto xc = piecewise_grid({0.0, lb, 1.0}, {uniform_grid(nc1), graded_grid(nc2, 1.1, 0.0)});
+  const Mesh work = structured_quad({-Lw, 0.0}, O, S, {-Lw, t1}, xw, eta, Pattern::union_jack);
+  const Mesh chip = structured_quad(O, O + Lc * r, S + Lc * r, S, xc, eta, Pattern::union_jack);
+  return cutting_model_on_mesh(merge(work, chip, 1e-9 * t1), c);
+}
+
+LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
+  const double t1 = c.t1;
+  const Vector2d r(std::sin(c.alpha), std::cos(c.alpha));
+  const Vector2d S(-t1 / std::tan(c.phi), t1);
+  const double Lw = c.inflow_length * t1 - S.x();  // inflow boundary at x = −Lw
+  LimitModel m;
+  m.mesh = std::move(mesh);
+  m.k = c.k;
+
+  const double tol = 1e-8 * t1;
+  std::vector<int> contact;
+  const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));  // rake-face normal, out of the chip
+  for (int i = 0; i < m.mesh.num_nodes(); ++i) {
+    const Vector2d& x = m.mesh.nodes[static_cast<std::size_t>(i)];
+    if (x.norm() < tol) {  // tool tip: stagnation
+      m.fix(i, 0);
+      m.fix(i, 1);
+      continue;
+    }
+    if (std::abs(x.x() + Lw) < tol) {  // inflow: unit velocity
+      m.fix(i, 0, 1.0);
+      m.fix(i, 1, 0.0);
+      continue;
+    }
+    if (std::abs(x.y()) < tol && x.x() < 0.0) {  // cutting line: smooth
+      m.fix(i, 1);
+      continue;
+    }
+    const double along = x.dot(r), off = x.dot(nr);
+    if (std::abs(off) < tol && along > 0.0 && along <= c.contact_length + tol) contact.push_back(i);
+  }
+  m.add_contact(contact, c.mu, nr);
+  return m;
+}
+
+CuttingResult solve_cutting(const CuttingSetup& c, const SocpSettings& settings) {
+  return solve_cutting_on(cutting_model(c), c, settings);
+}
+
+CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const SocpSettings& settings) {
+  CuttingResult res;
+  res.model = std::move(model);
+  res.t2 = chip_thickness(c.t1, c.phi, c.alpha);
+  if (c.mu > 0.0 && c.coulomb_fixed_point) {
+    res.solution = solve_limit_coulomb(res.model, settings, {}, &res.coulomb);
+  } else {
+    res.solution = solve_limit(res.model, settings);
+  }
+  const auto& sol = res.solution;
+  res.cutting_force = sol.collapse;
+  // force on the tool = − Σ contact reactions on the body (+ the tip node's reaction)
+  Vector2d ftool(0.0, 0.0);
+  const Vector2d r(std::sin(c.alpha), std::cos(c.alpha));
+  std::vector<std::pair<double, int>> order;
+  for (std::size_t i = 0; i < res.model.contacts.size(); ++i) {
+    const auto& cn = res.model.contacts[i];
+    const Vector2d t(-cn.normal.y(), cn.normal.x());
+    ftool -= sol.contact_rn[static_cast<Eigen::Index>(i)] * cn.normal + sol.contact_rt[static_cast<Eigen::Index>(i)] * t;
+    order.emplace_back(res.model.mesh.nodes[static_cast<std::size_t>(cn.node)].dot(r), static_cast<int>(i));
+  }
+  res.feed_force = ftool.y();
+  res.fc_bar = res.cutting_force / (c.k * c.t1);
+  res.ff_bar = res.feed_force / (c.k * c.t1);
+  // lumped contact stresses: nodal reaction / tributary length (1/6, 4/6, 1/6 weights of T6 edges)
+  std::map<int, double> trib;
+  for (const auto& e : boundary_edges(res.model.mesh)) {
+    const double L = (res.model.mesh.nodes[static_cast<std::size_t>(e.b)] - res.model.mesh.nodes[static_cast<std::size_t>(e.a)]).norm();
+    trib[e.a] += L / 6.0;
+    trib[e.b] += L / 6.0;
+    trib[e.m] += 4.0 * L / 6.0;
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [s, i] : order) {
+    const auto& cn = res.model.contacts[static_cast<std::size_t>(i)];
+    const double tl = trib[cn.node];
+    res.s.push_back(s);
+    res.sigma_n.push_back(sol.contact_rn[i] / tl);
+    res.tau.push_back(sol.contact_rt[i] / tl);
+    res.slip.push_back(sol.contact_wt[i]);
+  }
+  // stick fraction: share of the contact length (by tributary weights) where the node sticks
+  double total = 0.0, stuck = 0.0;
+  for (std::size_t i = 0; i < res.model.contacts.size(); ++i) {
+    const double tl = trib[res.model.contacts[i].node];
+    total += tl;
+    if (std::abs(sol.contact_wt[static_cast<Eigen::Index>(i)]) < 1e-6) stuck += tl;
+  }
+  res.stick_fraction = total > 0.0 ? stuck / total : 0.0;
+  return res;
+}
+
+double end_normal_stress(const CuttingResult& r, double contact_length, double fraction) {
+  // tributary-weighted mean of σ_n over s ≥ (1 − fraction) l (lumped nodal values)
+  double num = 0.0, den = 0.0;
+  const double s0 = (1.0 - fraction) * contact_length;
+  for (std::size_t i = 0; i < r.s.size(); ++i) {
+    if (r.s[i] < s0 - 1e-12) continue;
+    const double w = (i + 1 < r.s.size() ? r.s[i + 1] : r.s[i]) - (i > 0 ? r.s[i - 1] : 0.0);
+    num += w * r.sigma_n[i];
+    den += w;
+  }
+  return den > 0.0 ? num / den : 0.0;
+}
+
+ContactLengthResult search_contact_length(CuttingSetup c, const ContactLengthOptions& opt, const SocpSettings& settings) {
+  ContactLengthResult out;
+  auto eval = [&](double l) {
+    c.contact_length = l;
+    CuttingResult r = solve_cutting(c, settings);
+    const double sn = end_normal_stress(r, l) / c.k;
+    out.lengths.push_back(l);
+    out.end_stress.push_back(sn);
+    out.fc_bar.push_back(r.fc_bar);
+    return std::make_pair(sn, std::move(r));
+  };
+  const double l0 = c.t1 / std::cos(c.alpha);
+  double lo = l0;
+  auto [s_lo, r_lo] = eval(lo);
+  if (s_lo >= -opt.tol) {  // already unloaded at the minimum length
+    out.contact_length = lo;
+    out.final = std::move(r_lo);
+    return out;
+  }
+  double hi = lo;
+  CuttingResult r_hi;
+  bool found = false;
+  while (hi + opt.step * c.t1 <= opt.max_length * c.t1 + 1e-12) {
+    hi += opt.step * c.t1;
+    auto [s_hi, r] = eval(hi);
+    if (s_hi >= -opt.tol) {
+      found = true;
+      r_hi = std::move(r);
+      break;
+    }
+    lo = hi;
+    r_lo = std::move(r);
+  }
+  if (!found) {
+    out.restricted = true;
+    out.contact_length = lo;
+    out.final = std::move(r_lo);
+    return out;
+  }
+  for (int b = 0; b < opt.bisections; ++b) {
+    const double mid = 0.5 * (lo + hi);
+    auto [s_mid, r] = eval(mid);
+    if (s_mid >= -opt.tol) {
+      hi = mid;
+      r_hi = std::move(r);
+    } else {
+      lo = mid;
+    }
+  }
+  out.contact_length = hi;
+  out.final = std::move(r_hi);
+  return out;
+}
+
+double measured_shear_angle(const CuttingSetup& c, const CuttingResult& r) {
+  // Walk along the free surface (uncut top y = t1 up to S, then the chip back) and find where the
+  // direction of the material velocity is halfway between the inflow (0) and the rake face
+  // direction (90° − α); φ* is the angle of the line from the tool tip to that point.
+  const auto& mesh = r.model.mesh;
+  const Vector2d rr(std::sin(c.alpha), std::cos(c.alpha)), nr(std::cos(c.alpha), -std::sin(c.alpha));
+  const Vector2d S(-c.t1 / std::tan(c.phi), c.t1);
+  const double tol = 1e-8 * c.t1;
+  std::vector<std::pair<double, int>> path;  // (arc length from the inflow end, node)
+  std::vector<char> on(mesh.nodes.size(), 0);
+  for (const auto& e : boundary_edges(mesh)) {
+    for (int nd : {e.a, e.m, e.b}) on[static_cast<std::size_t>(nd)] = 1;
+  }
+  for (int i = 0; i < mesh.num_nodes(); ++i) {
+    if (!on[static_cast<std::size_t>(i)]) continue;
+    const Vector2d& x = mesh.nodes[static_cast<std::size_t>(i)];
+    if (std::abs(x.y() - c.t1) < tol && x.x() <= S.x() + tol) {
+      path.emplace_back(x.x() - S.x(), i);  // ≤ 0 before S
+    } else if (std::abs(x.dot(nr) - S.dot(nr)) < tol && (x - S).dot(rr) > tol) {
+      path.emplace_back((x - S).dot(rr), i);  // > 0 along the chip back
+    }
+  }
+  std::sort(path.begin(), path.end());
+  const double target = 0.5 * (0.5 * M_PI - c.alpha);
+  double prev_s = 0.0, prev_t = 0.0;
+  bool have = false;
+  for (const auto& [sv, i] : path) {
+    const double vx = r.solution.velocity[2 * i], vy = r.solution.velocity[2 * i + 1];
+    const double th = std::atan2(vy, vx);
+    if (have && prev_t < target && th >= target) {
+      const double f = (target - prev_t) / (th - prev_t);
+      const double sp = prev_s + f * (sv - prev_s);
+      const Vector2d P = sp <= 0.0 ? Vector2d(S.x() + sp, c.t1) : Vector2d(S + sp * rr);
+      return std::atan2(P.y(), -P.x());
+    }
+    prev_s = sv;
+    prev_t = th;
+    have = true;
+  }
+  throw NumericalError("measured_shear_angle: the free-surface velocity never turns toward the rake face");
+}
+
+SteadyStateResult steady_state(CuttingSetup c, const SteadyStateOptions& opt, const SocpSettings& settings) {
+  SteadyStateResult out;
+  const double phi_m = merchant_shear_angle(c.alpha, c.mu);
+  for (int it = 0; it < opt.max_iter; ++it) {
+    CuttingResult r = solve_cutting(c, settings);
+    const double ps = measured_shear_angle(c, r);
+    out.phi.push_back(c.phi);
+    out.phi_star.push_back(ps);
+    out.fc_bar.push_back(r.fc_bar);
+    // Molinari & Moufki: φ* ≥ φ_M → φ_M minimises F_c; otherwise φ = φ*
+    const double target = std::min(ps, phi_m);
+    const double next = c.phi + opt.relaxation * (target - c.phi);
+    out.final = std::move(r);
+    if (std::abs(next - c.phi) < opt.tol) {
+      out.converged = true;
+      break;
+    }
+    c.phi = next;
+  }
+  return out;
+}
+
+}  // namespace cutbench::limit

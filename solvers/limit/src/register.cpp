@@ -1,0 +1,305 @@
+#include "cutbench/limit/register.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/limit/cutting.hpp"
+#include "cutbench/limit/limit_analysis.hpp"
+
+namespace cutbench::limit {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+ParamSpec p_pos(const std::string& name, Dim dim, const std::string& desc, double def) {
+  ParamSpec p = param(name, dim, desc);
+  positive(p);
+  p.default_value = def;
+  return p;
+}
+ParamSpec p_nonneg(const std::string& name, Dim dim, const std::string& desc, double def) {
+  ParamSpec p = param(name, dim, desc);
+  non_negative(p);
+  p.default_value = def;
+  return p;
+}
+ParamSpec p_int(const std::string& name, const std::string& desc, double def, double lo, double hi) {
+  ParamSpec p = param(name, Dim::dimensionless, desc);
+  p.default_value = def;
+  p.min = lo;
+  p.max = hi;
+  return p;
+}
+
+Values validated(const SolverSpec& spec, const Values& given) {
+  ModelSpec tmp;
+  tmp.name = spec.name;
+  tmp.params = spec.params;
+  return validate_params(tmp, given);
+}
+
+int as_int(const Values& v, const std::string& name) {
+  const double x = v.at(name);
+  if (x != std::floor(x)) throw InputError(name, "must be an integer");
+  return static_cast<int>(x);
+}
+
+// Common outputs: solver statistics and a node snapshot with the velocity field.
+void add_solver_stats(RunOutput& out, const LimitSolution& s, double seconds) {
+  out.scalars["iterations"] = s.socp.iterations;
+  out.scalar_units["iterations"] = "1";
+  out.scalars["solve_time"] = seconds;
+  out.scalar_units["solve_time"] = "s";
+  out.scalars["kkt_dimension"] = s.socp.kkt_dim;
+  out.scalar_units["kkt_dimension"] = "1";
+  out.notes.push_back("SOCP status: " + to_string(s.socp.status) + (s.socp.message.empty() ? "" : " (" + s.socp.message + ")"));
+}
+
+void add_snapshot(RunOutput& out, const LimitModel& m, const LimitSolution& s, double length_scale, double velocity_scale) {
+  Snapshot snap;
+  for (const auto& x : m.mesh.nodes) {
+    snap.x.push_back(x.x() * length_scale);
+    snap.y.push_back(x.y() * length_scale);
+  }
+  std::vector<double> vx, vy;
+  for (int i = 0; i < m.mesh.num_nodes(); ++i) {
+    vx.push_back(s.velocity[2 * i] * velocity_scale);
+    vy.push_back(s.velocity[2 * i + 1] * velocity_scale);
+  }
+  snap.add("v_x", "m/s", vx);
+  snap.add("v_y", "m/s", vy);
+  out.snapshots.push_back(std::move(snap));
+  // element centroids: mean stress of the three stress points (over k) and the non-dimensional
+  // plastic dissipation density
+  Snapshot el;
+  std::vector<double> sxx, syy, txy, dis;
+  for (int e = 0; e < m.mesh.num_elements(); ++e) {
+    const auto& c = m.mesh.elements[static_cast<std::size_t>(e)];
+    Eigen::Vector2d x = (m.mesh.nodes[static_cast<std::size_t>(c[0])] + m.mesh.nodes[static_cast<std::size_t>(c[1])] +
+                         m.mesh.nodes[static_cast<std::size_t>(c[2])]) / 3.0;
+    el.x.push_back(x.x() * length_scale);
+    el.y.push_back(x.y() * length_scale);
+    double a = 0, b = 0, t = 0;
+    for (int i = 0; i < 3; ++i) {
+      a += s.stress(3 * e + i, 0) / 3.0;
+      b += s.stress(3 * e + i, 1) / 3.0;
+      t += s.stress(3 * e + i, 2) / 3.0;
+    }
+    sxx.push_back(a / m.k);
+    syy.push_back(b / m.k);
+    txy.push_back(t / m.k);
+    dis.push_back(s.element_dissipation_density[e]);
+  }
+  el.add("sigma_xx_over_k", "1", sxx);
+  el.add("sigma_yy_over_k", "1", syy);
+  el.add("tau_xy_over_k", "1", txy);
+  el.add("dissipation_density", "1", dis);
+  out.snapshots.push_back(std::move(el));
+}
+
+SolverSpec strip_spec() {
+  SolverSpec s;
+  s.name = "limit_strip";
+  s.description = "Verification: plane-strain strip in tension by mixed limit analysis (exact 2 k w on any mesh)";
+  s.source = "figueiredo2024 sec. 2.3 (method); classical plane-strain tension";
+  s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("length", Dim::length, "strip length", 3.0),
+              p_pos("width", Dim::length, "strip width w", 1.0), p_int("nx", "cells along the strip", 4, 1, 200),
+              p_int("ny", "cells across the strip", 2, 1, 200)};
+  s.scalars = {{"collapse_load", Dim::force_per_width, "limit load per unit thickness"},
+               {"exact_load", Dim::force_per_width, "2 k w"},
+               {"rel_error", Dim::dimensionless, "relative error"}};
+  s.run = [spec = s](const Values& given, const ProgressFn& progress) {
+    const Values v = validated(spec, given);
+    const double w = v.at("width"), k = v.at("k");
+    LimitModel m = strip_tension_model(v.at("length") / w, 1.0, as_int(v, "nx"), as_int(v, "ny"));
+    if (progress) progress(0.0, "solving");
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto sol = solve_limit(m);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    RunOutput out;
+    const double load = sol.collapse * k * w;
+    out.scalars["collapse_load"] = load;
+    out.scalar_units["collapse_load"] = "N/m";
+    out.scalars["exact_load"] = 2.0 * k * w;
+    out.scalar_units["exact_load"] = "N/m";
+    out.scalars["rel_error"] = std::abs(load / (2.0 * k * w) - 1.0);
+    out.scalar_units["rel_error"] = "1";
+    add_solver_stats(out, sol, dt);
+    add_snapshot(out, m, sol, w, 1.0);
+    if (progress) progress(1.0, "done");
+    return out;
+  };
+  return s;
+}
+
+SolverSpec punch_spec() {
+  SolverSpec s;
+  s.name = "limit_punch";
+  s.description = "Verification: Prandtl smooth rigid punch by mixed limit analysis (p = (2 + pi) k)";
+  s.source = "figueiredo2024 sec. 2.3 (method); Prandtl (1920)";
+  s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("half_width", Dim::length, "punch half-width B", 1.0),
+              p_int("n", "mesh density (cells under the half punch)", 8, 2, 64),
+              p_pos("grading", Dim::dimensionless, "geometric cell-size ratio toward the punch edge", 1.05)};
+  s.scalars = {{"pressure", Dim::stress, "mean punch pressure at collapse"},
+               {"pressure_over_k", Dim::dimensionless, "p/k"},
+               {"exact_over_k", Dim::dimensionless, "2 + pi"},
+               {"rel_error", Dim::dimensionless, "relative error"}};
+  s.run = [spec = s](const Values& given, const ProgressFn& progress) {
+    const Values v = validated(spec, given);
+    const double B = v.at("half_width"), k = v.at("k");
+    LimitModel m = prandtl_punch_model(1.0, as_int(v, "n"), v.at("grading"));
+    if (progress) progress(0.0, "solving");
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto sol = solve_limit(m);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    RunOutput out;
+    const double pk = sol.collapse;  // power for unit velocity over the half-width B = 1
+    out.scalars["pressure"] = pk * k;
+    out.scalar_units["pressure"] = "Pa";
+    out.scalars["pressure_over_k"] = pk;
+    out.scalar_units["pressure_over_k"] = "1";
+    out.scalars["exact_over_k"] = 2.0 + kPi;
+    out.scalar_units["exact_over_k"] = "1";
+    out.scalars["rel_error"] = std::abs(pk / (2.0 + kPi) - 1.0);
+    out.scalar_units["rel_error"] = "1";
+    out.scalars["elements"] = m.mesh.num_elements();
+    out.scalar_units["elements"] = "1";
+    add_solver_stats(out, sol, dt);
+    add_snapshot(out, m, sol, B, 1.0);
+    if (progress) progress(1.0, "done");
+    return out;
+  };
+  return s;
+}
+
+SolverSpec block_spec() {
+  SolverSpec s;
+  s.name = "limit_block";
+  s.description = "Verification: block pushed over a frictional rigid base (F = mu q W while mu q < k)";
+  s.source = "figueiredo2024 eqs. 5-9 (permanent contact, Coulomb); issue 6";
+  s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("width", Dim::length, "block width W", 1.0),
+              p_pos("height", Dim::length, "block height H", 1.0), p_nonneg("q", Dim::stress, "pressure on top", 1.0),
+              p_nonneg("mu", Dim::dimensionless, "friction coefficient", 0.3), p_int("nx", "cells along W", 4, 1, 200),
+              p_int("ny", "cells along H", 4, 1, 200)};
+  s.scalars = {{"force", Dim::force_per_width, "horizontal collapse force per unit thickness"},
+               {"sliding_force", Dim::force_per_width, "mu q W"},
+               {"shear_force", Dim::force_per_width, "k W"}};
+  s.run = [spec = s](const Values& given, const ProgressFn& progress) {
+    const Values v = validated(spec, given);
+    const double k = v.at("k"), W = v.at("width"), H = v.at("height");
+    LimitModel m = frictional_block_model(1.0, H / W, v.at("q") / k, v.at("mu"), as_int(v, "nx"), as_int(v, "ny"));
+    if (progress) progress(0.0, "solving");
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto sol = solve_limit(m);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    RunOutput out;
+    out.scalars["force"] = sol.collapse * (H / W) * k * W;
+    out.scalar_units["force"] = "N/m";
+    out.scalars["sliding_force"] = v.at("mu") * v.at("q") * W;
+    out.scalar_units["sliding_force"] = "N/m";
+    out.scalars["shear_force"] = k * W;
+    out.scalar_units["shear_force"] = "N/m";
+    add_solver_stats(out, sol, dt);
+    add_snapshot(out, m, sol, W, 1.0);
+    out.notes.push_back("exact only while mu q < k and the block does not tip or crush at the toe (W/H moderate)");
+    if (progress) progress(1.0, "done");
+    return out;
+  };
+  return s;
+}
+
+SolverSpec cutting_spec() {
+  SolverSpec s;
+  s.name = "limit_cutting";
+  s.description =
+      "Orthogonal cutting by mixed limit analysis: fixed chip geometry (phi, t2, contact length), Coulomb rake contact";
+  s.source = "figueiredo2024 sec. 2.1-2.3, Eqs. 1-2, 5-13";
+  ParamSpec phi = param("phi", Dim::angle, "shear angle (default: Merchant, Eq. 1)");
+  phi.default_value = nan_value();
+  phi.min = 0.0;
+  phi.max = 0.5 * kPi;
+  phi.min_inclusive = phi.max_inclusive = false;
+  ParamSpec l = param("contact_length", Dim::length, "tool-chip contact length l (default: t1/cos(alpha))");
+  l.default_value = nan_value();
+  ParamSpec alpha = param("alpha", Dim::angle, "rake angle");
+  alpha.default_value = 0.0;
+  alpha.min = -0.5;
+  alpha.max = 0.7;
+  s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("t1", Dim::length, "uncut chip thickness", 1.0),
+              p_pos("w", Dim::length, "width of cut", 1.0), alpha, p_nonneg("mu", Dim::dimensionless, "friction coefficient", 0.0),
+              phi, l, p_int("n", "mesh density (cells across t1)", 8, 2, 64),
+              p_int("coulomb_fixed_point", "1: non-associated Coulomb (fixed point on the pressure), 0: coupled cone", 1, 0, 1)};
+  s.scalars = {{"cutting_force", Dim::force, "F_c"},
+               {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
+               {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},
+               {"merchant_fc_bar", Dim::dimensionless, "Merchant's F_c/(k t1 w) at the same phi"},
+               {"phi", Dim::angle, "shear angle used"},
+               {"t2", Dim::length, "chip thickness (Eq. 2)"}};
+  s.run = [spec = s](const Values& given, const ProgressFn& progress) {
+    Values v = validated(spec, given);
+    const double k = v.at("k"), t1 = v.at("t1"), w = v.at("w"), a = v.at("alpha"), mu = v.at("mu");
+    CuttingSetup c;
+    c.alpha = a;
+    c.mu = mu;
+    c.phi = std::isnan(v.at("phi")) ? merchant_shear_angle(a, mu) : v.at("phi");
+    const double len = std::isnan(v.at("contact_length")) ? t1 / std::cos(a) : v.at("contact_length");
+    if (!(len > 0.0)) throw InputError("contact_length", "must be positive");
+    c.contact_length = len / t1;
+    c.n = as_int(v, "n");
+    c.coulomb_fixed_point = as_int(v, "coulomb_fixed_point") == 1;
+    if (progress) progress(0.0, "solving");
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto r = solve_cutting(c);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    RunOutput out;
+    auto put = [&](const std::string& name, double value, const std::string& unit) {
+      out.scalars[name] = value;
+      out.scalar_units[name] = unit;
+    };
+    put("cutting_force", r.fc_bar * k * t1 * w, "N");
+    put("feed_force", r.ff_bar * k * t1 * w, "N");
+    put("fc_bar", r.fc_bar, "1");
+    put("merchant_fc_bar", merchant_force_bar(c.phi, a, mu), "1");
+    put("phi", c.phi, "rad");
+    put("t2", r.t2 * t1, "m");
+    put("stick_fraction", r.stick_fraction, "1");
+    put("coulomb_iterations", r.coulomb.iterations, "1");
+    if (c.mu > 0.0 && c.coulomb_fixed_point && !r.coulomb.converged)
+      out.notes.push_back("Coulomb fixed point not converged (last relative pressure change " +
+                          std::to_string(r.coulomb.change) + ")");
+    add_solver_stats(out, r.solution, dt);
+    Table contact;
+    contact.name = "rake_contact";
+    std::vector<double> s_over_l, sn, tau, slip;
+    for (std::size_t i = 0; i < r.s.size(); ++i) {
+      s_over_l.push_back(r.s[i] / c.contact_length);
+      sn.push_back(r.sigma_n[i]);
+      tau.push_back(r.tau[i]);
+      slip.push_back(r.slip[i]);
+    }
+    contact.add("s_over_l", "1", s_over_l);
+    contact.add("sigma_n_over_k", "1", sn);
+    contact.add("tau_over_k", "1", tau);
+    contact.add("slip_velocity", "1", slip);
+    out.tables.push_back(std::move(contact));
+    add_snapshot(out, r.model, r.solution, t1, 1.0);
+    out.notes.push_back("fixed geometry: no steady-state (phi*) update, no contact-length search, no adaptive mesh yet");
+    out.notes.push_back("contact stresses are lumped nodal reactions over tributary lengths (T6 weights 1/6, 4/6, 1/6)");
+    if (progress) progress(1.0, "done");
+    return out;
+  };
+  return s;
+}
+
+}  // namespace
+
+void register_solvers(SolverRegistry& registry) {
+  for (SolverSpec (*make)() : {strip_spec, punch_spec, block_spec, cutting_spec}) {
+    SolverSpec spec = make();
+    if (registry.find(spec.name)) continue;
+    registry.add(std::move(spec));
+  }
+}
+
+}  // namespace cutbench::limit

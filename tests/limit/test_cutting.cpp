@@ -1,0 +1,92 @@
+// Frictionless single-shear-plane chip formation against Merchant (Figueiredo et al. 2024, Fig. 1).
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "cutbench/limit/cutting.hpp"
+
+using namespace cutbench::limit;
+
+BOOST_AUTO_TEST_SUITE(limit_cutting)
+
+BOOST_AUTO_TEST_CASE(geometry_formulas) {
+  // Eq. 2 and Merchant at μ = 0, α = 0: φ = 45°, t2 = t1, F̄c = 2
+  BOOST_TEST(std::abs(chip_thickness(1.0, M_PI / 4, 0.0) - 1.0) < 1e-14);
+  BOOST_TEST(std::abs(merchant_shear_angle(0.0, 0.0) - M_PI / 4) < 1e-14);
+  BOOST_TEST(std::abs(merchant_force_bar(M_PI / 4, 0.0, 0.0) - 2.0) < 1e-14);
+  // Merchant's φ minimises F̄c(φ)
+  const double a = 6.0 * M_PI / 180, mu = 0.4, pm = merchant_shear_angle(a, mu);
+  BOOST_TEST(merchant_force_bar(pm, a, mu) < merchant_force_bar(pm + 0.01, a, mu));
+  BOOST_TEST(merchant_force_bar(pm, a, mu) < merchant_force_bar(pm - 0.01, a, mu));
+}
+
+BOOST_AUTO_TEST_CASE(frictionless_chip_against_merchant) {
+  for (double alpha_deg : {0.0, 6.0}) {
+    const double alpha = alpha_deg * M_PI / 180;
+    CuttingSetup c;
+    c.alpha = alpha;
+    c.mu = 0.0;
+    c.phi = merchant_shear_angle(alpha, 0.0);
+    c.contact_length = c.t1 / std::cos(alpha);  // restricted tool, minimum contact length
+    const double fm = merchant_force_bar(c.phi, alpha, 0.0);
+    const double ffm = fm * std::tan(-alpha);  // Merchant's feed force at β = 0
+    double prev = 1e9;
+    for (int n : {4, 8}) {
+      c.n = n;
+      const auto r = solve_cutting(c);
+      const double err = std::abs(r.fc_bar / fm - 1.0);
+      BOOST_TEST_MESSAGE("alpha=" << alpha_deg << " n=" << n << " Fc_bar=" << r.fc_bar << " (Merchant " << fm
+                                  << ") Ff_bar=" << r.ff_bar << " (Merchant " << ffm << ") it="
+                                  << r.solution.socp.iterations << " t=" << r.solution.socp.seconds << "s");
+      BOOST_TEST(r.solution.socp.status == SocpStatus::optimal);
+      BOOST_TEST(err < prev);
+      prev = err;
+      BOOST_TEST(std::abs(r.ff_bar - ffm) < 0.02 * fm);
+      // frictionless: no tangential stress on the rake face
+      for (double t : r.tau) BOOST_TEST(std::abs(t) < 1e-6);
+    }
+    BOOST_TEST(prev < (alpha_deg == 0.0 ? 0.01 : 0.02));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(frictionless_chip_adaptive) {
+  // α = 0, μ = 0, φ = 45°, l = 1.2 t1: dissipation-driven refinement from n = 4:
+  // F̄c 2.033 (136 elements) → 2.007 with 343 elements after 5 steps (uniform n = 12: 2.005, 1032).
+  CuttingSetup c;
+  c.n = 4;
+  c.contact_length = 1.2;
+  AdaptOptions opt;
+  opt.steps = 5;
+  const auto steps = adapt_limit(cutting_model(c).mesh, [&](Mesh m) { return cutting_model_on_mesh(std::move(m), c); }, opt);
+  for (const auto& s : steps) BOOST_TEST_MESSAGE("adaptive chip: elements " << s.elements << " Fc_bar " << s.collapse);
+  BOOST_TEST(std::abs(steps.back().collapse / 2.0 - 1.0) < 0.005);
+  BOOST_TEST(steps.back().elements < 400);
+}
+
+BOOST_AUTO_TEST_CASE(measured_shear_angle_frictionless) {
+  // single shear plane at φ = 45° (α = 0, μ = 0): the free-surface velocity turns at S.
+  // The band is smeared over the elements next to OS: φ* = 43.7° at n = 8, 44.6° at n = 16.
+  CuttingSetup c;
+  c.n = 8;
+  c.contact_length = 1.2;
+  const auto r = solve_cutting(c);
+  const double ps = measured_shear_angle(c, r) * 180.0 / M_PI;
+  BOOST_TEST_MESSAGE("phi* = " << ps << " deg for phi = 45 deg");
+  BOOST_TEST(std::abs(ps - 45.0) < 2.0);
+}
+
+BOOST_AUTO_TEST_CASE(contact_length_search_frictionless) {
+  // α = 0, μ = 0, φ = 45°: the normal stress at the end of the contact vanishes at l ≈ 1.2–1.3 t1
+  // (n = 4: 1.234, n = 8: 1.266); the paper: "on the order of t1" without friction.
+  CuttingSetup c;
+  c.n = 4;
+  const auto r = search_contact_length(c);
+  BOOST_TEST_MESSAGE("contact length " << r.contact_length << " after " << r.lengths.size() << " solves");
+  BOOST_TEST(!r.restricted);
+  BOOST_TEST(r.contact_length > 1.1);
+  BOOST_TEST(r.contact_length < 1.4);
+  BOOST_TEST(std::abs(end_normal_stress(r.final, r.contact_length)) < 0.05);
+  BOOST_TEST(end_normal_stress(r.final, 1.0) < 0.0);  // compressive over the restricted length
+}
+
+BOOST_AUTO_TEST_SUITE_END()

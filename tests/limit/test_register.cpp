@@ -1,0 +1,33 @@
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/limit/register.hpp"
+
+BOOST_AUTO_TEST_SUITE(limit_registry)
+
+BOOST_AUTO_TEST_CASE(register_is_idempotent_and_runs) {
+  cutbench::SolverRegistry reg;
+  cutbench::limit::register_solvers(reg);
+  const auto n = reg.all().size();
+  cutbench::limit::register_solvers(reg);
+  BOOST_TEST(reg.all().size() == n);
+  const auto* strip = reg.find("limit_strip");
+  BOOST_REQUIRE(strip);
+  const auto out = strip->run({{"k", 2.0e8}, {"width", 0.01}, {"length", 0.03}}, nullptr);
+  BOOST_TEST(std::abs(out.scalars.at("collapse_load") / (2.0 * 2.0e8 * 0.01) - 1.0) < 1e-6);
+  const auto* block = reg.find("limit_block");
+  BOOST_REQUIRE(block);
+  const auto ob = block->run({{"k", 1e8}, {"width", 0.02}, {"height", 0.02}, {"q", 5e7}, {"mu", 0.3}}, nullptr);
+  BOOST_TEST(std::abs(ob.scalars.at("force") / (0.3 * 5e7 * 0.02) - 1.0) < 1e-6);
+  BOOST_CHECK_THROW(strip->run({{"width", -1.0}}, nullptr), cutbench::InputError);
+  const auto* cut = reg.find("limit_cutting");
+  BOOST_REQUIRE(cut);
+  const auto oc = cut->run({{"k", 6.4e8}, {"t1", 2e-4}, {"w", 3.5e-3}, {"n", 4.0}}, nullptr);
+  BOOST_TEST(std::abs(oc.scalars.at("fc_bar") - 2.0) < 0.05);
+  BOOST_TEST(std::abs(oc.scalars.at("cutting_force") / (oc.scalars.at("fc_bar") * 6.4e8 * 2e-4 * 3.5e-3) - 1.0) < 1e-12);
+  BOOST_TEST(oc.tables.size() == 1u);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

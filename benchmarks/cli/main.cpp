@@ -118,8 +118,8 @@ int cmd_list(bool as_json, const fs::path& results, const std::string& paper_fil
     for (const auto& [s, k] : m) std::cout << ", " << k << " " << s;
     std::cout << "\n";
   }
-  std::cout << "FAIL (known): every failing check is a documented known failure (a paper inconsistency);\n"
-               "it stays FAIL in the report and does not fail the exit code.\n";
+  std::cout << "FAIL (known): every failing check is a documented known failure (a paper inconsistency or an\n"
+               "open solver limitation, with its reason in the report); it stays FAIL and does not fail the exit code.\n";
   return 0;
 }
 

@@ -137,6 +137,19 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
     out.runs.push_back(std::move(run));
   }
   for (const auto& o : sv->scalars) out.table.add(o.name, si_unit(o.dim), scal[o.name]);
+  // Scalars a run reports beyond the declared ones are kept too (unit from the run).
+  for (std::size_t k = 0; k < out.runs.size(); ++k) {
+    for (const auto& [name, value] : out.runs[k].scalars) {
+      if (out.table.columns.count(name)) continue;
+      std::vector<double> col(out.runs.size(), nan_value());
+      for (std::size_t j = 0; j < out.runs.size(); ++j) {
+        auto it = out.runs[j].scalars.find(name);
+        if (it != out.runs[j].scalars.end()) col[j] = it->second;
+      }
+      auto u = out.runs[k].scalar_units.find(name);
+      out.table.add(name, u == out.runs[k].scalar_units.end() ? "1" : u->second, col);
+    }
+  }
   return out;
 }
 

@@ -235,7 +235,12 @@ SolverSpec cutting_spec() {
                {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},
                {"merchant_fc_bar", Dim::dimensionless, "Merchant's F_c/(k t1 w) at the same phi"},
                {"phi", Dim::angle, "shear angle used"},
-               {"t2", Dim::length, "chip thickness (Eq. 2)"}};
+               {"t2", Dim::length, "chip thickness (Eq. 2)"},
+               {"stick_fraction", Dim::dimensionless, "fraction of the contact length in stick (zero slip)"},
+               {"coulomb_iterations", Dim::dimensionless, "fixed-point iterations on the contact pressure"},
+               {"iterations", Dim::dimensionless, "interior-point iterations (last solve)"},
+               {"kkt_dimension", Dim::dimensionless, "size of the KKT system"},
+               {"solve_time", Dim::time, "wall time of the solves"}};
   s.run = [spec = s](const Values& given, const ProgressFn& progress) {
     Values v = validated(spec, given);
     const double k = v.at("k"), t1 = v.at("t1"), w = v.at("w"), a = v.at("alpha"), mu = v.at("mu");

@@ -281,6 +281,7 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
               << fmt(wall, 4) << " s (" << fmt(static_cast<double>(points) / wall, 4) << " evaluations/s)\n";
   } else {
     const SolverSpec* sv = SolverRegistry::instance().find(name);
+    if (!sv) sv = SolverRegistry::instance().find(name + "_cutting");  // `bench mpm` = mpm_cutting
     if (!sv) {
       std::string known = "analytic";
       for (const auto& s : SolverRegistry::instance().all()) known += ", " + s.name;

@@ -26,7 +26,7 @@ const std::set<std::string> kCaseKeys = {
     "id",     "paper",  "item",   "title",       "requirement", "status", "reason",
     "solver", "models", "tiers",  "assumptions", "params",      "tier",   "series",
     "checks", "plots",  "tables"};
-const std::set<std::string> kSeriesKeys = {"name", "model", "params", "sweep", "rows", "zip", "tier", "pending", "link"};
+const std::set<std::string> kSeriesKeys = {"name", "model", "params", "sweep", "rows", "zip", "tier", "tiers", "pending", "link"};
 const std::set<std::string> kCheckKeys = {"key",    "kind",      "metric",        "value",
                                           "reference", "tolerance", "units",      "source",
                                           "known_failure", "description", "tiers"};
@@ -274,6 +274,14 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       check_keys(s, kSeriesKeys, where);
       SeriesSpec ss;
       ss.name = get_string(s, "name", where + ".");
+      const auto series_tiers = get_strings(s, "tiers", where + ".");
+      for (const auto& t : series_tiers) {
+        if (!kTiers.count(t)) throw InputError(where + ".tiers", "unknown tier '" + t + "' (expected quick or full)");
+      }
+      if (!series_tiers.empty() &&
+          std::find(series_tiers.begin(), series_tiers.end(), tier) == series_tiers.end()) {
+        continue;  // this series belongs to another tier
+      }
       ss.model = get_string(s, "model", where + ".");
       const std::string sw = "series '" + ss.name + "'.";
       ss.pending = get_string(s, "pending", sw, false);

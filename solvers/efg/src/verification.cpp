@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <limits>
 
 namespace cutbench::efg {
 
@@ -70,6 +71,92 @@ CantileverResult timoshenko_cantilever(int nx, int ny, double support_factor, co
   }
   for (const auto& fi : f) fmax = std::max(fmax, fi.norm());
   r.max_fint_residual = res / fmax;
+  return r;
+}
+
+WaveResult bar_wave(const Orthotropic& m, double theta, double L, int nx, int ny, double cfl,
+                    Kinematics kin, const WeightParams& w) {
+  const double H = L * (ny - 1) / (nx - 1);
+  const Discretisation d = rectangle(L, H, nx, ny, 2.5);
+  ExplicitOptions opt;
+  opt.kinematics = kin;
+  opt.cfl = cfl;
+  opt.weight = w;
+  ExplicitEFG s(d, m, theta, opt);
+  const double v0 = 1.0;
+  for (int j = 0; j < ny; ++j) {
+    s.add_velocity_bc(j * nx, 0, [v0](double) { return v0; });
+    for (int i = 0; i < nx; ++i) s.add_velocity_bc(j * nx + i, 1, [](double) { return 0.0; });
+  }
+  const int row = ny / 2, i1 = (nx - 1) / 4, i2 = 3 * (nx - 1) / 4;
+  const int n1 = row * nx + i1, n2 = row * nx + i2;
+  WaveResult r;
+  r.c_exact = std::sqrt(m.Qbar(theta)(0, 0) / m.rho);
+  double t1 = -1, t2 = -1, v1p = 0, v2p = 0, tp = 0;
+  while (s.time() < 0.9 * L / r.c_exact) {
+    s.step();
+    const double v1 = s.velocities()[n1].x(), v2 = s.velocities()[n2].x(), t = s.time();
+    if (t1 < 0 && v1 >= 0.5 * v0) t1 = tp + (t - tp) * (0.5 * v0 - v1p) / (v1 - v1p);
+    if (t2 < 0 && v2 >= 0.5 * v0) t2 = tp + (t - tp) * (0.5 * v0 - v2p) / (v2 - v2p);
+    v1p = v1;
+    v2p = v2;
+    tp = t;
+    r.t.push_back(t);
+    r.v1.push_back(v1);
+    r.v2.push_back(v2);
+  }
+  r.steps = s.steps();
+  if (t1 > 0 && t2 > t1) {
+    r.c_measured = (d.nodes[n2].x() - d.nodes[n1].x()) / (t2 - t1);
+    r.rel_error = r.c_measured / r.c_exact - 1.0;
+  } else {
+    r.c_measured = r.rel_error = std::numeric_limits<double>::quiet_NaN();
+  }
+  return r;
+}
+
+PatchResult patch_test(const Orthotropic& m, double theta, int nx, int ny, double jitter, int gauss_per_dir,
+                       const WeightParams& w) {
+  PatchResult r;
+  const double Lx = 1.0, Ly = 1.0 * (ny - 1) / (nx - 1);
+  const Discretisation d = rectangle(Lx, Ly, nx, ny, 2.5, jitter, 8, gauss_per_dir);
+  Mat2 H;
+  H << 1e-3, 2e-3, -1e-3, 0.5e-3;
+  // (a) homogeneous finite deformation, total Lagrangian.
+  {
+    Mat2 Hf = 50.0 * H;  // finite: |H| ~ 0.1
+    const Mat2 F = Mat2::Identity() + Hf;
+    ExplicitOptions opt;
+    opt.weight = w;
+    ExplicitEFG s(d, m, theta, opt);
+    std::vector<Vec2> u(d.nodes.size());
+    for (std::size_t I = 0; I < u.size(); ++I) u[I] = Hf * d.nodes[I] + Vec2(1e-3, -2e-3);
+    s.set_displacement(u);
+    const Mat2 C = F.transpose() * F;
+    const Eigen::Vector3d E(0.5 * (C(0, 0) - 1), 0.5 * (C(1, 1) - 1), C(0, 1));
+    const Eigen::Vector3d S = m.Qbar(theta) * E;
+    for (std::size_t g = 0; g < s.num_gauss(); ++g) {
+      r.max_F_error = std::max(r.max_F_error, (s.deformation_gradient(g) - F).cwiseAbs().maxCoeff());
+      r.max_stress_rel_error =
+          std::max(r.max_stress_rel_error, (s.pk2(g) - S).cwiseAbs().maxCoeff() / S.cwiseAbs().maxCoeff());
+    }
+  }
+  // (b) static patch test.
+  std::vector<NodalDirichlet> fixed;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      if (i == 0 || j == 0 || i == nx - 1 || j == ny - 1) {
+        const int I = j * nx + i;
+        const Vec2 u = H * d.nodes[I];
+        fixed.push_back({I, 0, u.x()});
+        fixed.push_back({I, 1, u.y()});
+      }
+    }
+  }
+  const auto u = solve_linear_static(d, m.Qbar(theta), 1.0, w, fixed, std::vector<Vec2>(d.nodes.size(), Vec2::Zero()));
+  double e = 0.0;
+  for (std::size_t I = 0; I < d.nodes.size(); ++I) e = std::max(e, (u[I] - H * d.nodes[I]).norm());
+  r.static_rel_error = e / (H.norm() * Lx);
   return r;
 }
 

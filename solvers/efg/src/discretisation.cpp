@@ -118,7 +118,7 @@ std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const st
   const long n = static_cast<long>(points.size());
   bool ok = true;
   long bad = -1;
-#pragma omp parallel
+#pragma omp parallel if (n > 20000)
   {
     std::vector<int> cand;
 #pragma omp for schedule(static)

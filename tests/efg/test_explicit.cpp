@@ -178,6 +178,10 @@ BOOST_AUTO_TEST_CASE(wave_speed_in_constrained_bar) {
                                                << " steps)");
     BOOST_TEST(std::abs(r.rel_error) < 0.01);
   }
+  const WaveResult rul = bar_wave(m, 0.0, 0.2, 201, 5, 0.5, Kinematics::updated_lagrangian, WeightParams{}, 5);
+  BOOST_TEST_MESSAGE("wave speed (theta 0, UL, reference moved every 5 steps): measured " << rul.c_measured
+                                                                                          << " m/s, rel " << rul.rel_error);
+  BOOST_TEST(std::abs(rul.rel_error) < 0.01);
   const WaveResult r90 = bar_wave(m, std::acos(-1.0) / 2, 0.2, 201, 5, 0.5);
   BOOST_TEST_MESSAGE("wave speed (theta 90): measured " << r90.c_measured << " m/s, sqrt(Qbar11/rho) "
                                                         << r90.c_exact << " m/s, rel " << r90.rel_error);

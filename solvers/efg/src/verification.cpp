@@ -75,13 +75,14 @@ CantileverResult timoshenko_cantilever(int nx, int ny, double support_factor, co
 }
 
 WaveResult bar_wave(const Orthotropic& m, double theta, double L, int nx, int ny, double cfl,
-                    Kinematics kin, const WeightParams& w) {
+                    Kinematics kin, const WeightParams& w, int update_interval) {
   const double H = L * (ny - 1) / (nx - 1);
   const Discretisation d = rectangle(L, H, nx, ny, 2.5);
   ExplicitOptions opt;
   opt.kinematics = kin;
   opt.cfl = cfl;
   opt.weight = w;
+  opt.update_interval = update_interval;
   ExplicitEFG s(d, m, theta, opt);
   const double v0 = 1.0;
   for (int j = 0; j < ny; ++j) {

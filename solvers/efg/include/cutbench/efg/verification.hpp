@@ -31,7 +31,8 @@ struct WaveResult {
   std::vector<double> t, v1, v2;  // velocity histories at the two stations
 };
 WaveResult bar_wave(const Orthotropic& m, double theta, double L, int nx, int ny, double cfl,
-                    Kinematics kin = Kinematics::small_strain, const WeightParams& w = WeightParams{});
+                    Kinematics kin = Kinematics::small_strain, const WeightParams& w = WeightParams{},
+                    int update_interval = 1);
 
 // Patch tests on an nx x ny node set of [0,Lx] x [0,Ly] (interior jitter as a fraction of h):
 // (a) a homogeneous finite deformation F = I + H imposed on all nodes: max |F_G - F| and the

@@ -225,7 +225,7 @@ BOOST_AUTO_TEST_CASE(runners_registered_and_runnable) {
   cutbench::SolverRegistry reg;
   register_solvers(reg);
   register_solvers(reg);  // idempotent
-  BOOST_TEST(reg.all().size() == 3u);
+  BOOST_TEST(reg.all().size() == 4u);
   const cutbench::SolverSpec* s = reg.find("efg_patch");
   BOOST_REQUIRE(s);
   cutbench::Values v;

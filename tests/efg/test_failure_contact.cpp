@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "cutbench/efg/cutting.hpp"
 #include "cutbench/efg/explicit.hpp"
 
 using namespace cutbench::efg;
@@ -222,6 +223,35 @@ BOOST_AUTO_TEST_CASE(block_impact_sticks_at_low_slip_speed) {
                                                  << ", max |F_t|/F_n " << r.max_ratio);
   BOOST_TEST(r.stick_steps > 0);
   BOOST_TEST(r.max_ratio <= mu * (1 + 1e-12));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(cutting_prototype)
+
+BOOST_AUTO_TEST_CASE(tool_engages_at_gap_over_speed) {
+  // Smoke test of the PROTOTYPE cutting set-up (coarse, 10 um of travel): the tool first touches
+  // the workpiece within one step of gap/speed, the workpiece resists the advance (F_c > 0), the
+  // thrust pushes the tool away (F_t > 0) and LaRC02 damages Gauss points ahead of the edge.
+  // These are sanity checks, not a reproduction of Kahwash Tables 4-6.
+  CuttingSetup s;
+  auto& l = s.lamina;
+  l = gfrp_lamina();
+  s.theta = 30.0 * kPi / 180.0;
+  s.spacing = 0.05e-3;
+  s.time_scale = 50.0;
+  s.travel = 0.01e-3;
+  const CuttingResult r = run_cutting(s);
+  BOOST_TEST_MESSAGE("cutting smoke test: " << r.nodes << " nodes, " << r.steps << " steps, contact at "
+                                            << r.t_contact << " s (gap/speed " << r.t_contact_expected
+                                            << " s), F_c " << r.Fc_mean << " N/m, F_t " << r.Ft_mean
+                                            << " N/m, damaged fibre/matrix " << r.fibre_damaged << "/"
+                                            << r.matrix_damaged << " of " << r.gauss);
+  BOOST_TEST(r.t_contact >= r.t_contact_expected);
+  BOOST_TEST(r.t_contact < r.t_contact_expected + 1.01 * r.dt_initial);
+  BOOST_TEST(r.Fc_mean > 0.0);
+  BOOST_TEST(r.Ft_mean > 0.0);
+  BOOST_TEST(r.fibre_damaged + r.matrix_damaged > 0u);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,6 +1,7 @@
 #include "cutbench/efg/explicit.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -113,7 +114,15 @@ void ExplicitEFG::compute_internal_forces() {
 
 bool ExplicitEFG::update_damage(GP& q) const {
   const FailureOptions& fo = opt_.failure;
+  const bool has_interface = fo.criterion == analytic::Criterion::max_stress || (fo.S_sigma > 0.0 && fo.S_tau > 0.0);
+  if (q.damage[0] + q.damage[1] >= 2.0 && (!has_interface || q.damage[2] >= 1.0)) return false;
   const Eigen::Vector3d s12 = stress_rotation(theta_) * q.S;  // Eq 52
+  // Screen: with every material-frame component below 0.2 x the smallest strength, no index of
+  // the three criteria can reach 1 (each is at most quadratic in stress/strength with O(1)
+  // coefficients; LaRC02 kinking <= 0.4 (1 + eta_L) < 1); skips the costly LaRC02 search.
+  const double smin = std::min({fo.lamina.Y_T, fo.lamina.Y_C, fo.lamina.S_L,
+                                fo.S_sigma > 0.0 ? fo.S_sigma : HUGE_VAL, fo.S_tau > 0.0 ? fo.S_tau : HUGE_VAL});
+  if (s12.cwiseAbs().maxCoeff() < 0.2 * smin) return false;
   analytic::PlaneStress ps;
   ps.s11 = s12(0);
   ps.s22 = s12(1);

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cutbench/common/solver.hpp"
+#include "cutbench/efg/cutting.hpp"
 #include "cutbench/efg/verification.hpp"
 
 namespace cutbench::efg {
@@ -153,6 +154,99 @@ void register_solvers(SolverRegistry& registry) {
     return out;
   };
   registry.add(patch);
+
+  SolverSpec cut;
+  cut.name = "efg_cutting";
+  cut.description = "PROTOTYPE explicit EFG orthogonal cutting of UD-GFRP: F_c, F_t per unit width (not validated)";
+  cut.source = "Kahwash et al. 2018 sections 2-3, Tables 2-3";
+  cut.params = material_params();
+  for (auto q : {p("theta", Dim::angle, "fibre angle, clockwise from the cutting direction", pi / 6, 0, pi),
+                 p("criterion", Dim::dimensionless, "0 max stress, 1 Hashin, 2 LaRC02", 2, 0, 2),
+                 p("X_T", Dim::stress, "fibre tensile strength", 697.8e6, 0, inf),
+                 p("X_C", Dim::stress, "fibre compressive strength", 443.76e6, 0, inf),
+                 p("Y_T", Dim::stress, "transverse tensile strength", 89.7216e6, 0, inf),
+                 p("Y_C", Dim::stress, "transverse compressive strength", 148.33e6, 0, inf),
+                 p("S_L", Dim::stress, "in-plane shear strength", 33.1e6, 0, inf),
+                 p("depth", Dim::length, "depth of cut", 0.25e-3, 0, inf),
+                 p("work_length", Dim::length, "workpiece length", 1.5e-3, 0, inf),
+                 p("work_height", Dim::length, "workpiece height", 0.75e-3, 0, inf),
+                 p("spacing", Dim::length, "nodal spacing", 0.05e-3, 0, inf),
+                 p("speed", Dim::velocity, "cutting speed (Table 3: 3800 mm/min)", 3800e-3 / 60.0, 0, inf),
+                 p("time_scale", Dim::dimensionless, "tool speed multiplier (time scaling)", 50, 1, 1e4),
+                 p("travel", Dim::length, "tool travel after first contact", 0.05e-3, 0, inf),
+                 p("mu", Dim::dimensionless, "rake-face friction coefficient", 0.3, 0, 2),
+                 p("clearance", Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
+                 p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1)}) {
+    cut.params.push_back(q);
+  }
+  cut.scalars = {{"F_c", Dim::force_per_width, "mean cutting force over the second half of the travel"},
+                 {"F_t", Dim::force_per_width, "mean thrust force over the second half of the travel"},
+                 {"t_contact", Dim::time, "first tool contact"},
+                 {"t_dt_drop", Dim::time, "first time the Eq 56 step fell below half its initial value (-1: none)"},
+                 {"dt_min_ratio", Dim::dimensionless, "smallest / initial time step"},
+                 {"fibre_damaged_fraction", Dim::dimensionless, "Gauss points with fibre damage"},
+                 {"matrix_damaged_fraction", Dim::dimensionless, "Gauss points with matrix damage"},
+                 {"nodes", Dim::dimensionless, "nodes"},
+                 {"steps", Dim::dimensionless, "time steps"}};
+  cut.run = [](const Values& v, const ProgressFn& progress) {
+    CuttingSetup s;
+    s.material = gfrp_of(v);
+    s.lamina.X_T = v.at("X_T");
+    s.lamina.X_C = v.at("X_C");
+    s.lamina.Y_T = v.at("Y_T");
+    s.lamina.Y_C = v.at("Y_C");
+    s.lamina.S_L = v.at("S_L");
+    s.lamina.E1 = s.material.E1;
+    s.lamina.G12 = s.material.G12;
+    s.lamina.nu12 = s.material.nu12;
+    s.criterion = static_cast<analytic::Criterion>(static_cast<int>(std::lround(v.at("criterion"))));
+    s.theta = v.at("theta");
+    s.depth = v.at("depth");
+    s.work_length = v.at("work_length");
+    s.work_height = v.at("work_height");
+    s.spacing = v.at("spacing");
+    s.speed = v.at("speed");
+    s.time_scale = v.at("time_scale");
+    s.travel = v.at("travel");
+    s.mu = v.at("mu");
+    s.clearance = v.at("clearance");
+    s.residual = v.at("residual");
+    const CuttingResult r = run_cutting(s, [&](double f) {
+      if (progress) progress(f, "simulated " + std::to_string(f * 100.0) + " %");
+    });
+    RunOutput out;
+    Table t;
+    t.name = "forces";
+    t.add("t", "s", r.t);
+    t.add("F_c", "N/m", r.Fc);
+    t.add("F_t", "N/m", r.Ft);
+    t.add("dt", "s", r.dt);
+    out.tables.push_back(t);
+    Snapshot snap;
+    snap.time = r.t.empty() ? 0.0 : r.t.back();
+    snap.x = r.gx;
+    snap.y = r.gy;
+    snap.add("fibre_damage", "1", r.dfibre);
+    snap.add("matrix_damage", "1", r.dmatrix);
+    out.snapshots.push_back(snap);
+    const double ng = static_cast<double>(r.gauss);
+    out.scalars = {{"F_c", r.Fc_mean},
+                   {"F_t", r.Ft_mean},
+                   {"t_contact", r.t_contact},
+                   {"t_dt_drop", r.t_dt_drop},
+                   {"dt_min_ratio", r.dt_min / r.dt_initial},
+                   {"fibre_damaged_fraction", static_cast<double>(r.fibre_damaged) / ng},
+                   {"matrix_damaged_fraction", static_cast<double>(r.matrix_damaged) / ng},
+                   {"nodes", static_cast<double>(r.nodes)},
+                   {"steps", static_cast<double>(r.steps)}};
+    out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"t_contact", "s"}, {"t_dt_drop", "s"}};
+    out.notes.push_back("efg_cutting is a PROTOTYPE: not validated against Kahwash Tables 4-6; workpiece size, "
+                        "clearance angle (7 deg), sharp edge, friction 0.3, fixed bottom and far end, and the "
+                        "time scaling are assumptions; no visibility criterion; damaged points keep 1 % stiffness "
+                        "(no separation).");
+    return out;
+  };
+  registry.add(cut);
 }
 
 }  // namespace cutbench::efg

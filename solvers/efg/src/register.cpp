@@ -1,4 +1,5 @@
 // Case runners of the EFG solver (verification problems), registered with the framework.
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -187,7 +188,8 @@ void register_solvers(SolverRegistry& registry) {
                  {"fibre_damaged_fraction", Dim::dimensionless, "Gauss points with fibre damage"},
                  {"matrix_damaged_fraction", Dim::dimensionless, "Gauss points with matrix damage"},
                  {"nodes", Dim::dimensionless, "nodes"},
-                 {"steps", Dim::dimensionless, "time steps"}};
+                 {"steps", Dim::dimensionless, "time steps"},
+                 {"node_steps_per_s", Dim::dimensionless, "throughput: nodes x steps / wall time (1/s)"}};
   cut.run = [](const Values& v, const ProgressFn& progress) {
     CuttingSetup s;
     s.material = gfrp_of(v);
@@ -211,9 +213,11 @@ void register_solvers(SolverRegistry& registry) {
     s.mu = v.at("mu");
     s.clearance = v.at("clearance");
     s.residual = v.at("residual");
+    const auto t0 = std::chrono::steady_clock::now();
     const CuttingResult r = run_cutting(s, [&](double f) {
       if (progress) progress(f, "simulated " + std::to_string(f * 100.0) + " %");
     });
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     RunOutput out;
     Table t;
     t.name = "forces";
@@ -238,7 +242,8 @@ void register_solvers(SolverRegistry& registry) {
                    {"fibre_damaged_fraction", static_cast<double>(r.fibre_damaged) / ng},
                    {"matrix_damaged_fraction", static_cast<double>(r.matrix_damaged) / ng},
                    {"nodes", static_cast<double>(r.nodes)},
-                   {"steps", static_cast<double>(r.steps)}};
+                   {"steps", static_cast<double>(r.steps)},
+                   {"node_steps_per_s", static_cast<double>(r.nodes) * static_cast<double>(r.steps) / wall}};
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"t_contact", "s"}, {"t_dt_drop", "s"}};
     out.notes.push_back("efg_cutting is a PROTOTYPE: not validated against Kahwash Tables 4-6; workpiece size, "
                         "clearance angle (7 deg), sharp edge, friction 0.3, fixed bottom and far end, and the "

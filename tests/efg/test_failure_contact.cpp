@@ -225,6 +225,80 @@ BOOST_AUTO_TEST_CASE(block_impact_sticks_at_low_slip_speed) {
   BOOST_TEST(r.max_ratio <= mu * (1 + 1e-12));
 }
 
+namespace {
+struct PressedBlock {
+  double weight = 0, Fn_mean = 0, Ft_mean = 0, vx_end = 0, ax_expected = 0, ax = 0;
+  int stick_steps = 0, slip_steps = 0;
+};
+// A block resting on the floor under a body force g (down) and a tangential body force q g (+x):
+// time averages of the reported floor forces against the applied loads.
+PressedBlock pressed_block(double q, double mu) {
+  const Orthotropic m;
+  const double H = 0.005, g = 2.0e5;  // large g so that the static deflection spans many steps
+  const Discretisation d = rectangle(H, H, 6, 6, 2.5);
+  ExplicitOptions opt;
+  ExplicitEFG s(d, m, 0.0, opt);
+  std::vector<Vec2> f(d.nodes.size());
+  double M = 0.0;
+  for (std::size_t I = 0; I < f.size(); ++I) {
+    f[I] = s.masses()[I] * Vec2(q * g, -g);
+    M += s.masses()[I];
+  }
+  s.set_external_force(f);
+  RigidTool floor;
+  floor.vertices = {Vec2(-1, -1), Vec2(1, -1), Vec2(1, -1e-12), Vec2(-1, -1e-12)};
+  floor.mu = mu;
+  s.set_tool(floor);
+  PressedBlock r;
+  r.weight = M * g;
+  double T = 0, In = 0, It = 0, t_half = 0, vx_half = 0;
+  const int n = 6000;
+  for (int k = 0; k < n; ++k) {
+    const double dt = s.step();
+    if (k == n / 2) {
+      double p = 0;
+      for (std::size_t I = 0; I < f.size(); ++I) p += s.masses()[I] * s.velocities()[I].x();
+      vx_half = p / M;
+      t_half = s.time();
+    }
+    if (k >= n / 2) {
+      T += dt;
+      In += -s.tool_force().y() * dt;
+      It += s.tool_force().x() * dt;
+      if (s.contact_count() > 0) (s.stick_count() == s.contact_count() ? r.stick_steps : r.slip_steps)++;
+    }
+  }
+  double p = 0;
+  for (std::size_t I = 0; I < f.size(); ++I) p += s.masses()[I] * s.velocities()[I].x();
+  r.vx_end = p / M;
+  r.ax = (r.vx_end - vx_half) / (s.time() - t_half);
+  r.Fn_mean = In / T;
+  r.Ft_mean = It / T;
+  r.ax_expected = q > mu ? (q - mu) * g : 0.0;
+  return r;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(pressed_block_reported_forces_equal_loads) {
+  // Steady contact: the time-averaged reported normal force equals the weight (the Eq 39 value
+  // summed literally would be twice it); below mu the block sticks and the floor carries the
+  // tangential load; above mu it slides with F_t = mu F_n and acceleration (q - mu) g.
+  const double mu = 0.3;
+  const PressedBlock a = pressed_block(0.2, mu), b = pressed_block(0.5, mu);
+  BOOST_TEST_MESSAGE("pressed block q = 0.2: F_n/W " << a.Fn_mean / a.weight << ", F_t/W " << a.Ft_mean / a.weight
+                                                    << ", mean a_x " << a.ax << " m/s2, stick/slip steps " << a.stick_steps
+                                                    << "/" << a.slip_steps);
+  BOOST_TEST_MESSAGE("pressed block q = 0.5: F_n/W " << b.Fn_mean / b.weight << ", F_t/F_n " << b.Ft_mean / b.Fn_mean
+                                                    << ", a_x " << b.ax << " m/s2 (expected " << b.ax_expected
+                                                    << "), stick/slip steps " << b.stick_steps << "/" << b.slip_steps);
+  BOOST_TEST(std::abs(a.Fn_mean / a.weight - 1.0) < 0.02);
+  BOOST_TEST(std::abs(a.Ft_mean / a.weight - 0.2) < 0.01);
+  BOOST_TEST(std::abs(b.Fn_mean / b.weight - 1.0) < 0.02);
+  BOOST_TEST(std::abs(b.Ft_mean / b.Fn_mean - mu) < 0.01);
+  BOOST_TEST(std::abs(b.ax / b.ax_expected - 1.0) < 0.05);
+  BOOST_TEST(std::abs(a.ax) < 0.05 * b.ax_expected);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(cutting_prototype)

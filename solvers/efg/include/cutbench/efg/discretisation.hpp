@@ -1,0 +1,44 @@
+#pragma once
+// EFG discretisation: nodes with their support radii, background quadrilateral cells with
+// 2 x 2 Gauss points (Kahwash 2018, section 3.1, Eq 54), and the shape functions at those points.
+#include <array>
+#include <vector>
+
+#include "cutbench/efg/mls.hpp"
+
+namespace cutbench::efg {
+
+struct GaussPoint {
+  Vec2 x = Vec2::Zero();
+  double weight = 0.0;  // Gauss weight x |J| (area per unit thickness)
+  int cell = -1;
+};
+
+struct Discretisation {
+  std::vector<Vec2> nodes;
+  std::vector<double> support;                 // D_I, domain-of-influence radius per node
+  std::vector<std::array<int, 4>> cells;       // background cells (counter-clockwise vertices)
+  std::vector<Vec2> cell_vertices;             // cell vertex coordinates
+  std::vector<GaussPoint> gauss;
+  double spacing = 0.0;                        // characteristic nodal spacing h
+};
+
+// Regular nx x ny node grid on [0,Lx] x [0,Ly]; support D_I = support_factor * max(hx, hy);
+// interior nodes jittered by up to `jitter` * h (uniform, deterministic seed). Background cells:
+// the regular (nx-1) x (ny-1) grid of the unjittered lattice, ng x ng Gauss points per cell.
+Discretisation rectangle(double Lx, double Ly, int nx, int ny, double support_factor,
+                         double jitter = 0.0, unsigned seed = 1, int ng = 2);
+
+// Gauss points of a straight boundary segment [a, b] split into nseg pieces with ng points each
+// (weights are lengths), for traction integrals.
+std::vector<GaussPoint> line_gauss(const Vec2& a, const Vec2& b, int nseg, int ng = 2);
+
+// Shape functions at each point; throws NumericalError naming the point when the MLS fit fails.
+std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const std::vector<Vec2>& nodes,
+                                       const std::vector<double>& support, const WeightParams& weight,
+                                       bool derivatives = true);
+
+// Gauss-Legendre points and weights on [-1, 1] for n = 1..4.
+void gauss_legendre(int n, std::vector<double>& xi, std::vector<double>& w);
+
+}  // namespace cutbench::efg

@@ -1,0 +1,68 @@
+#pragma once
+// Moving least squares (MLS) shape functions of the element-free Galerkin method, as in Kahwash,
+// Shyha, Maheri (2018), Compos. Struct. 198:156-173, section 2.2 (Eqs 10-21).
+//
+// Linear basis p = {1, (x - x_e)/h, (y - y_e)/h}, shifted to the evaluation point x_e and scaled
+// by the local support size h, so that the moment matrix A stays well conditioned; with the
+// shifted basis p(x_e) = e1 and phi_I = e1^T A^{-1} p_I w_I (Eq 17). Derivatives follow Eqs 18-19
+// with the shift point frozen: gamma = A^{-1} e1, gamma_,i = A^{-1}(p_,i - A_,i gamma).
+//
+// Weights: the regularised weight of Most & Bucher (Eqs 20-21, EQUATIONS.md E4), normalised by
+// the sum over the neighbours (which leaves the MLS shape functions unchanged mathematically but
+// keeps A of order one), or a cubic spline. Each node has its own support radius D_I.
+#include <Eigen/Core>
+#include <vector>
+
+namespace cutbench::efg {
+
+using Vec2 = Eigen::Vector2d;
+
+enum class WeightKind { regularized, cubic_spline };
+
+struct WeightParams {
+  WeightKind kind = WeightKind::regularized;
+  double omega = 1e-5;  // regularisation constant of Eq 21 (paper: 1e-5)
+};
+
+// Unnormalised weight w(s) and dw/ds for s = d/D >= 0 (zero for s >= 1).
+void weight_function(const WeightParams& p, double s, double& w, double& dw_ds);
+
+// Shape functions of the nodes supporting one point.
+struct ShapeData {
+  std::vector<int> nodes;
+  std::vector<double> phi, dphidx, dphidy;
+  void clear() {
+    nodes.clear();
+    phi.clear();
+    dphidx.clear();
+    dphidy.clear();
+  }
+};
+
+// Uniform-grid cell list over a set of points for radius queries.
+class CellList {
+public:
+  void build(const std::vector<Vec2>& points, double cell_size);
+  // Indices of points within `radius` of x (unsorted order is deterministic: cell by cell).
+  void query(const Vec2& x, double radius, std::vector<int>& out) const;
+  // Smallest distance between two distinct points (requires cell_size >= that distance to be
+  // exact; returns +inf when no pair is closer than cell_size).
+  double min_pair_distance() const;
+  double cell_size() const { return h_; }
+
+private:
+  long key(long i, long j) const { return i * ny_ + j; }
+  const std::vector<Vec2>* pts_ = nullptr;
+  double h_ = 1.0;
+  Vec2 lo_ = Vec2::Zero();
+  long nx_ = 0, ny_ = 0;
+  std::vector<int> start_, items_;  // CSR layout of points per cell
+};
+
+// MLS shape functions at x from the candidate nodes (those with |x - x_I| < D_I are used).
+// Returns false when fewer than three supporting nodes exist or A is singular.
+bool mls_shape(const Vec2& x, const std::vector<Vec2>& nodes, const std::vector<double>& support,
+               const std::vector<int>& candidates, const WeightParams& weight, ShapeData& out,
+               bool derivatives = true);
+
+}  // namespace cutbench::efg

@@ -1,0 +1,302 @@
+#include "cutbench/efg/explicit.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "cutbench/common/errors.hpp"
+
+namespace cutbench::efg {
+
+namespace {
+Mat2 voigt_to_tensor(const Eigen::Vector3d& s) {
+  Mat2 m;
+  m << s(0), s(2), s(2), s(1);
+  return m;
+}
+}  // namespace
+
+ExplicitEFG::ExplicitEFG(const Discretisation& d, const Orthotropic& mat, double theta,
+                         const ExplicitOptions& opt)
+    : mat_(mat), Qbar_(mat.Qbar(theta)), theta_(theta), opt_(opt), support_(d.support), spacing_(d.spacing),
+      X0_(d.nodes), xr_(d.nodes), x_(d.nodes) {
+  if (opt_.update_interval < 1) throw InputError("update_interval", "must be >= 1");
+  const std::size_t n = X0_.size();
+  v_.assign(n, Vec2::Zero());
+  a_.assign(n, Vec2::Zero());
+  fint_.assign(n, Vec2::Zero());
+  fext_.assign(n, Vec2::Zero());
+  mass_.assign(n, 0.0);
+  std::vector<Vec2> pts;
+  for (const auto& g : d.gauss) pts.push_back(g.x);
+  auto sf = shape_functions(pts, X0_, support_, opt_.weight, true);
+  gp_.resize(pts.size());
+  for (std::size_t g = 0; g < pts.size(); ++g) {
+    gp_[g].xr = pts[g];
+    gp_[g].Vr = d.gauss[g].weight * opt_.thickness;
+    gp_[g].sd = std::move(sf[g]);
+    // Lumped mass: row sums of the consistent mass of Eq 35, M_I = sum_G rho V_G phi_I(x_G).
+    for (std::size_t a = 0; a < gp_[g].sd.nodes.size(); ++a) {
+      mass_[gp_[g].sd.nodes[a]] += mat_.rho * gp_[g].Vr * gp_[g].sd.phi[a];
+    }
+  }
+  for (std::size_t I = 0; I < n; ++I) {
+    if (!(mass_[I] > 0.0)) {
+      throw NumericalError("EFG: non-positive lumped mass at node " + std::to_string(I) +
+                           " (node outside the integration domain or too small a support)");
+    }
+  }
+  compute_internal_forces();
+  for (std::size_t I = 0; I < n; ++I) a_[I] = (fext_[I] - fint_[I]) / mass_[I];
+}
+
+void ExplicitEFG::add_velocity_bc(int node, int dof, std::function<double(double)> v) {
+  bcs_.push_back({node, dof, std::move(v)});
+  v_[node](dof) = bcs_.back().v(t_);
+}
+
+void ExplicitEFG::set_displacement(const std::vector<Vec2>& u) {
+  for (std::size_t I = 0; I < x_.size(); ++I) x_[I] = X0_[I] + u[I];
+  compute_internal_forces();
+  if (opt_.kinematics == Kinematics::updated_lagrangian) update_reference();
+  for (std::size_t I = 0; I < x_.size(); ++I) a_[I] = (fext_[I] - fint_[I]) / mass_[I];
+}
+
+std::vector<Vec2> ExplicitEFG::displacements() const {
+  std::vector<Vec2> u(x_.size());
+  for (std::size_t I = 0; I < x_.size(); ++I) u[I] = x_[I] - X0_[I];
+  return u;
+}
+
+void ExplicitEFG::compute_internal_forces() {
+  const long ng = static_cast<long>(gp_.size());
+  std::vector<Mat2> P(gp_.size());
+  const bool small = opt_.kinematics == Kinematics::small_strain;
+  const bool failure = opt_.failure.enabled;
+#pragma omp parallel for schedule(static) if (ng > 20000)
+  for (long g = 0; g < ng; ++g) {
+    GP& q = gp_[g];
+    // F_inc = I + sum_I (x_I - x_I^r) (grad_r phi_I)^T: the identity is exact, not the sum of
+    // large coordinates times derivatives (which loses digits far from the origin).
+    Mat2 Finc = Mat2::Identity();
+    for (std::size_t a = 0; a < q.sd.nodes.size(); ++a) {
+      const int I = q.sd.nodes[a];
+      const Vec2 dphi(q.sd.dphidx[a], q.sd.dphidy[a]);
+      Finc += (x_[I] - xr_[I]) * dphi.transpose();
+    }
+    q.F = Finc * q.Fr;
+    if (small) {
+      const Mat2 H = q.F - Mat2::Identity();
+      q.E = Eigen::Vector3d(H(0, 0), H(1, 1), H(0, 1) + H(1, 0));
+      q.S = (q.damage[0] + q.damage[1] + q.damage[2] > 0.0 ? q.Qd : Qbar_) * q.E;
+      if (failure && update_damage(q)) q.S = q.Qd * q.E;
+      P[g] = voigt_to_tensor(q.S);
+    } else {
+      const Mat2 C = q.F.transpose() * q.F;
+      q.E = Eigen::Vector3d(0.5 * (C(0, 0) - 1.0), 0.5 * (C(1, 1) - 1.0), C(0, 1));  // engineering shear
+      q.S = (q.damage[0] + q.damage[1] + q.damage[2] > 0.0 ? q.Qd : Qbar_) * q.E;
+      if (failure && update_damage(q)) q.S = q.Qd * q.E;
+      const Mat2 S = voigt_to_tensor(q.S);
+      P[g] = Finc * (q.Fr * S * q.Fr.transpose()) / q.Fr.determinant();
+    }
+  }
+  for (auto& f : fint_) f.setZero();
+  for (std::size_t g = 0; g < gp_.size(); ++g) {
+    const GP& q = gp_[g];
+    for (std::size_t a = 0; a < q.sd.nodes.size(); ++a) {
+      const Vec2 dphi(q.sd.dphidx[a], q.sd.dphidy[a]);
+      fint_[q.sd.nodes[a]] += q.Vr * (P[g] * dphi);
+    }
+  }
+}
+
+bool ExplicitEFG::update_damage(GP& q) const {
+  const FailureOptions& fo = opt_.failure;
+  const bool has_interface = fo.criterion == analytic::Criterion::max_stress || (fo.S_sigma > 0.0 && fo.S_tau > 0.0);
+  if (q.damage[0] + q.damage[1] >= 2.0 && (!has_interface || q.damage[2] >= 1.0)) return false;
+  const Eigen::Vector3d s12 = stress_rotation(theta_) * q.S;  // Eq 52
+  // Screen: with every material-frame component below 0.2 x the smallest strength, no index of
+  // the three criteria can reach 1 (each is at most quadratic in stress/strength with O(1)
+  // coefficients; LaRC02 kinking <= 0.4 (1 + eta_L) < 1); skips the costly LaRC02 search.
+  const double smin = std::min({fo.lamina.Y_T, fo.lamina.Y_C, fo.lamina.S_L,
+                                fo.S_sigma > 0.0 ? fo.S_sigma : HUGE_VAL, fo.S_tau > 0.0 ? fo.S_tau : HUGE_VAL});
+  if (s12.cwiseAbs().maxCoeff() < 0.2 * smin) return false;
+  analytic::PlaneStress ps;
+  ps.s11 = s12(0);
+  ps.s22 = s12(1);
+  ps.t12 = s12(2);
+  const analytic::FailureIndices fi = analytic::failure_indices(fo.criterion, ps, fo.lamina);
+  double interface = 0.0;
+  if (!std::isnan(fi.shear)) {
+    interface = fi.shear;
+  } else if (fo.S_sigma > 0.0 && fo.S_tau > 0.0) {
+    const double sn = std::max(0.0, ps.s22) / fo.S_sigma, st = ps.t12 / fo.S_tau;
+    interface = sn * sn + st * st;
+  }
+  const double idx[3] = {fi.fibre, fi.matrix, interface};
+  bool changed = false;
+  for (int k = 0; k < 3; ++k) {
+    if (q.damage[k] < 1.0 && idx[k] >= 1.0) {
+      q.damage[k] = 1.0;
+      changed = true;
+    }
+  }
+  if (changed) {
+    Orthotropic m = mat_;
+    const double r = fo.residual;
+    if (q.damage[fibre_damage] > 0.0) {
+      m.E1 *= r;
+      m.G12 *= r;
+      m.nu12 *= r;
+    }
+    if (q.damage[matrix_damage] > 0.0) {
+      m.E2 *= r;
+      m.G12 *= r;
+      m.nu12 *= r;
+    }
+    if (q.damage[interface_damage] > 0.0) m.G12 *= r;
+    q.Qd = m.Qbar(theta_);
+  }
+  return changed;
+}
+
+void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
+  tool_force_.setZero();
+  ncontact_ = nstick_ = 0;
+  if (!has_tool_) return;
+  const std::size_t nv = tool_.vertices.size();
+  const Vec2 shift = tool_.velocity * (t_ + dt);  // tool at t^{n+1}
+  std::vector<Vec2> v(nv);
+  Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);
+  for (std::size_t k = 0; k < nv; ++k) {
+    v[k] = tool_.vertices[k] + shift;
+    lo = lo.cwiseMin(v[k]);
+    hi = hi.cwiseMax(v[k]);
+  }
+  for (std::size_t I = 0; I < x_.size(); ++I) {
+    const Vec2 xp = x_[I] + dt * vhalf[I];  // predicted x^{n+1} (Eq 49)
+    if ((xp.array() < lo.array()).any() || (xp.array() > hi.array()).any()) continue;
+    double gmin = 1e300;
+    std::size_t face = 0;
+    bool inside = true;
+    for (std::size_t k = 0; k < nv && inside; ++k) {
+      const Vec2 e = (v[(k + 1) % nv] - v[k]).normalized();
+      const Vec2 r = xp - v[k];
+      const double depth = e.x() * r.y() - e.y() * r.x();  // > 0: left of the CCW edge (inside)
+      if (depth <= 0.0) inside = false;
+      if (depth < gmin) {
+        gmin = depth;
+        face = k;
+      }
+    }
+    if (!inside) continue;
+    const Vec2 t = (v[(face + 1) % nv] - v[face]).normalized();
+    const Vec2 n(t.y(), -t.x());  // outward normal of the face
+    const double M = mass_[I];
+    const double fn = 2.0 * M * gmin / (dt * dt);                       // Eq 39
+    const double gt = (dt * vhalf[I] - dt * tool_.velocity).dot(t);  // tangential slip in the step
+    // Eq 40 with the factor 2 of Eq 39: both trial forces act through the half step of Eq 48,
+    // so this stick force removes the step's tangential slip exactly, and the stick/slip
+    // comparison compares like with like (README: contact).
+    const double ft_stick = -2.0 * M * gt / (dt * dt);
+    const double ft_slip = tool_.mu * fn;                              // Eq 41
+    double ft;
+    if (std::abs(ft_stick) <= ft_slip) {
+      ft = ft_stick;
+      ++nstick_;
+    } else {
+      ft = gt > 0.0 ? -ft_slip : ft_slip;
+    }
+    const Vec2 fc = fn * n + ft * t;  // Eqs 42-43
+    // Contact force in a^n of Eq 48: v^{n+1/2} += dt/2 f/M (so x^{n+1} moves by dt^2/2 f/M = g n).
+    vhalf[I] += 0.5 * dt * fc / M;
+    // Momentum given to the node in the step: dt/2 fc, i.e. a mean force fc/2 over dt. The tool
+    // force is reported from that impulse (in steady contact it equals the pressing force, while
+    // the Eq 39 value is twice it).
+    tool_force_ -= 0.5 * fc;
+    ++ncontact_;
+  }
+}
+
+void ExplicitEFG::update_reference() {
+  for (auto& q : gp_) {
+    Vec2 xg = Vec2::Zero();
+    for (std::size_t a = 0; a < q.sd.nodes.size(); ++a) xg += q.sd.phi[a] * x_[q.sd.nodes[a]];
+    const Mat2 Finc = q.F * q.Fr.inverse();
+    q.Vr *= Finc.determinant();
+    q.Fr = q.F;
+    q.xr = xg;
+  }
+  xr_ = x_;
+  std::vector<Vec2> pts(gp_.size());
+  for (std::size_t g = 0; g < gp_.size(); ++g) pts[g] = gp_[g].xr;
+  auto sf = shape_functions(pts, xr_, support_, opt_.weight, true);
+  for (std::size_t g = 0; g < gp_.size(); ++g) gp_[g].sd = std::move(sf[g]);
+}
+
+void ExplicitEFG::apply_bcs(double t) {
+  for (const auto& b : bcs_) v_[b.node](b.dof) = b.v(t);
+}
+
+double ExplicitEFG::critical_time_step() const {
+  CellList cl;
+  cl.build(x_, spacing_);
+  double dmin = cl.min_pair_distance();
+  if (!std::isfinite(dmin)) dmin = spacing_;
+  return dmin / mat_.wave_speed();
+}
+
+double ExplicitEFG::step() {
+  const double dt = opt_.cfl * critical_time_step();
+  step(dt);
+  return dt;
+}
+
+void ExplicitEFG::step(double dt) {
+  const std::size_t n = x_.size();
+  for (std::size_t I = 0; I < n; ++I) v_[I] += 0.5 * dt * a_[I];  // Eq 48
+  apply_contact(dt, v_);
+  apply_bcs(t_ + 0.5 * dt);
+  for (std::size_t I = 0; I < n; ++I) x_[I] += dt * v_[I];  // Eq 49
+  t_ += dt;
+  ++nstep_;
+  compute_internal_forces();
+  if (opt_.kinematics == Kinematics::updated_lagrangian && nstep_ % opt_.update_interval == 0) {
+    update_reference();
+  }
+  for (std::size_t I = 0; I < n; ++I) {
+    a_[I] = (fext_[I] - fint_[I]) / mass_[I];  // Eq 46
+    v_[I] += 0.5 * dt * a_[I];                  // Eq 50
+  }
+  apply_bcs(t_);
+}
+
+Eigen::Vector3d ExplicitEFG::cauchy(std::size_t g) const {
+  const GP& q = gp_[g];
+  if (opt_.kinematics == Kinematics::small_strain) return q.S;
+  const Mat2 s = q.F * voigt_to_tensor(q.S) * q.F.transpose() / q.F.determinant();
+  return Eigen::Vector3d(s(0, 0), s(1, 1), s(0, 1));
+}
+
+Vec2 ExplicitEFG::gauss_position(std::size_t g) const {
+  const GP& q = gp_[g];
+  Vec2 xg = Vec2::Zero();
+  for (std::size_t a = 0; a < q.sd.nodes.size(); ++a) xg += q.sd.phi[a] * x_[q.sd.nodes[a]];
+  return xg;
+}
+
+double ExplicitEFG::kinetic_energy() const {
+  double k = 0.0;
+  for (std::size_t I = 0; I < x_.size(); ++I) k += 0.5 * mass_[I] * v_[I].squaredNorm();
+  return k;
+}
+
+double ExplicitEFG::strain_energy() const {
+  double e = 0.0;
+  for (const auto& q : gp_) e += 0.5 * q.Vr / q.Fr.determinant() * q.E.dot(q.S);
+  return e;
+}
+
+}  // namespace cutbench::efg

@@ -1,0 +1,328 @@
+// Progressive failure per Gauss point with the analytic library's criteria (per-mode damage,
+// sudden irreversible degradation), and the rigid-tool central-difference contact of Eqs 39-43:
+// contact timing, Coulomb slip F_t = mu F_n, stick, momentum balance of the reported forces.
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "cutbench/efg/cutting.hpp"
+#include "cutbench/efg/explicit.hpp"
+
+using namespace cutbench::efg;
+namespace an = cutbench::analytic;
+
+namespace {
+const double kPi = std::acos(-1.0);
+
+an::Lamina gfrp_lamina() {
+  an::Lamina l;  // Kahwash Table 2 means
+  l.X_T = 697.8e6;
+  l.X_C = 443.76e6;
+  l.Y_T = 89.7216e6;
+  l.Y_C = 148.33e6;
+  l.S_L = 33.1e6;
+  l.E1 = 34.28e9;
+  l.G12 = 2.05e9;
+  l.nu12 = 0.24244;
+  return l;
+}
+
+// Homogeneous small-strain state (exx, eyy, gxy) on every node of the discretisation.
+std::vector<Vec2> homogeneous(const Discretisation& d, double exx, double eyy, double gxy) {
+  std::vector<Vec2> u(d.nodes.size());
+  for (std::size_t I = 0; I < u.size(); ++I) {
+    const Vec2& X = d.nodes[I];
+    u[I] = Vec2(exx * X.x() + gxy * X.y(), eyy * X.y());
+  }
+  return u;
+}
+
+struct DamageCount {
+  std::size_t fibre = 0, matrix = 0, interface = 0;
+};
+DamageCount count(const ExplicitEFG& s) {
+  DamageCount c;
+  for (std::size_t g = 0; g < s.num_gauss(); ++g) {
+    const auto d = s.damage(g);
+    c.fibre += d[0] > 0.5;
+    c.matrix += d[1] > 0.5;
+    c.interface += d[2] > 0.5;
+  }
+  return c;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(progressive_failure)
+
+BOOST_AUTO_TEST_CASE(modes_thresholds_and_degradation) {
+  const Orthotropic m;
+  const Discretisation d = rectangle(0.004, 0.002, 9, 5, 2.5, 0.2, 1);
+  const Eigen::Matrix3d Q = m.Q();
+  const an::Criterion crits[3] = {an::Criterion::max_stress, an::Criterion::hashin, an::Criterion::larc02};
+  const char* names[3] = {"max stress", "Hashin", "LaRC02"};
+  for (int c = 0; c < 3; ++c) {
+    ExplicitOptions opt;
+    opt.kinematics = Kinematics::small_strain;
+    opt.failure.enabled = true;
+    opt.failure.criterion = crits[c];
+    opt.failure.lamina = gfrp_lamina();
+    const std::size_t ng = d.gauss.size();
+    // Fibre tension at theta = 0 (sigma22 = 0): sigma11 = E1 eps.
+    {
+      ExplicitEFG s(d, m, 0.0, opt);
+      const double e1 = 697.8e6 / m.E1, r = -Q(0, 1) / Q(1, 1);
+      s.set_displacement(homogeneous(d, 0.99 * e1, 0.99 * r * e1, 0.0));
+      const DamageCount below = count(s);
+      s.set_displacement(homogeneous(d, 1.01 * e1, 1.01 * r * e1, 0.0));
+      const DamageCount above = count(s);
+      s.set_displacement(homogeneous(d, 0.5 * e1, 0.5 * r * e1, 0.0));  // unload: damage stays
+      const DamageCount after = count(s);
+      const double s11 = s.pk2(0)(0);
+      BOOST_TEST_MESSAGE(names[c] << " fibre tension: damaged GPs below/above/unloaded " << below.fibre << "/"
+                                  << above.fibre << "/" << after.fibre << " of " << ng << "; sigma11 unloaded "
+                                  << s11 << " Pa (undamaged " << 0.5 * 697.8e6 << ")");
+      BOOST_TEST(below.fibre + below.matrix + below.interface == 0u, names[c]);
+      BOOST_TEST(above.fibre == ng, names[c]);
+      BOOST_TEST(above.matrix == 0u, names[c]);
+      BOOST_TEST(after.fibre == ng, names[c]);
+      BOOST_TEST(std::abs(s11) < 0.02 * 0.5 * 697.8e6, names[c]);
+    }
+    // Transverse tension at theta = 90 deg: x is the material 2 direction, sigma_x = E2 eps.
+    {
+      ExplicitEFG s(d, m, kPi / 2, opt);
+      // A small fibre tension (1e-5 strain) keeps sigma11 off zero, where rounding would pick
+      // the fibre branch (LaRC02's kinking branch at sigma11 = -0 flags transverse tension too).
+      const double e2 = 89.7216e6 / m.E2, r = -Q(0, 1) / Q(0, 0), ef = 1e-5;
+      s.set_displacement(homogeneous(d, 0.99 * e2, 0.99 * r * e2 + ef, 0.0));
+      const DamageCount below = count(s);
+      s.set_displacement(homogeneous(d, 1.01 * e2, 1.01 * r * e2 + ef, 0.0));
+      const DamageCount above = count(s);
+      BOOST_TEST_MESSAGE(names[c] << " matrix tension (theta 90): matrix-damaged GPs below/above " << below.matrix
+                                  << "/" << above.matrix);
+      BOOST_TEST(below.fibre + below.matrix + below.interface == 0u, names[c]);
+      BOOST_TEST(above.matrix == ng, names[c]);
+      BOOST_TEST(above.fibre == 0u, names[c]);
+    }
+    // In-plane shear at theta = 0 (with a small fibre tension, 1e-5): interface mode for maximum
+    // stress (its shear index), matrix mode for Hashin and LaRC02, and for Hashin also the fibre
+    // mode, whose tension form (s11/X_T)^2 + (t12/S_L)^2 contains the shear.
+    {
+      ExplicitEFG s(d, m, 0.0, opt);
+      const double g = 33.1e6 / m.G12, ef = 1e-5;
+      s.set_displacement(homogeneous(d, ef, 0.0, 0.99 * g));
+      const DamageCount below = count(s);
+      s.set_displacement(homogeneous(d, ef, 0.0, 1.01 * g));
+      const DamageCount above = count(s);
+      BOOST_TEST_MESSAGE(names[c] << " shear: fibre/matrix/interface damaged " << above.fibre << "/" << above.matrix
+                                  << "/" << above.interface);
+      BOOST_TEST(below.fibre + below.matrix + below.interface == 0u, names[c]);
+      if (crits[c] == an::Criterion::max_stress) {
+        BOOST_TEST(above.interface == ng, names[c]);
+        BOOST_TEST(above.matrix == 0u, names[c]);
+      } else {
+        BOOST_TEST(above.matrix == ng, names[c]);
+        BOOST_TEST(above.interface == 0u, names[c]);
+      }
+      BOOST_TEST(above.fibre == (crits[c] == an::Criterion::hashin ? ng : 0u), names[c]);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(contact)
+
+namespace {
+struct BlockRun {
+  double t_first = -1, dt_first = 0, t_exact = 0;
+  double max_slip_ratio_error = 0;  // max | |F_t| - mu F_n | / (mu F_n) over all-slip steps
+  double max_ratio = 0;             // max |F_t| / F_n over contact steps
+  int stick_steps = 0, slip_steps = 0;
+  double impulse_n = 0, impulse_t = 0, dpy = 0, dpx = 0, vy_end = 0;
+  bool drag_opposes_slip = true;
+};
+
+// A 10 mm x 10 mm elastic block moving at (vx, -1 m/s) towards a rigid floor 10 um below it.
+BlockRun block(double vx, double mu) {
+  const Orthotropic m;
+  const double H = 0.01, g0 = 1e-5, vy = -1.0;
+  const Discretisation d = rectangle(H, H, 11, 11, 2.5);
+  ExplicitOptions opt;
+  ExplicitEFG s(d, m, 0.0, opt);
+  s.set_initial_velocity(std::vector<Vec2>(d.nodes.size(), Vec2(vx, vy)));
+  RigidTool floor;
+  floor.vertices = {Vec2(-1, -g0 - 1), Vec2(1, -g0 - 1), Vec2(1, -g0), Vec2(-1, -g0)};
+  floor.mu = mu;
+  s.set_tool(floor);
+  const auto momentum = [&] {
+    Vec2 p = Vec2::Zero();
+    for (std::size_t I = 0; I < d.nodes.size(); ++I) p += s.masses()[I] * s.velocities()[I];
+    return p;
+  };
+  BlockRun r;
+  r.t_exact = g0 / -vy;
+  const Vec2 p0 = momentum();
+  const double t_end = r.t_exact + 3.0 * H / std::sqrt(m.E2 / m.rho);
+  while (s.time() < t_end) {
+    const double dt = s.step();
+    const Vec2 F = s.tool_force();  // force on the floor
+    if (s.contact_count() > 0) {
+      if (r.t_first < 0) {
+        r.t_first = s.time();
+        r.dt_first = dt;
+      }
+      const double Fn = -F.y(), Ft = F.x();
+      r.impulse_n += Fn * dt;
+      r.impulse_t += Ft * dt;
+      r.max_ratio = std::max(r.max_ratio, std::abs(Ft) / Fn);
+      if (s.stick_count() == 0) {
+        ++r.slip_steps;
+        r.max_slip_ratio_error = std::max(r.max_slip_ratio_error, std::abs(std::abs(Ft) - mu * Fn) / (mu * Fn));
+        if (vx != 0.0 && Ft * vx < 0) r.drag_opposes_slip = false;  // floor dragged along the slip
+      } else {
+        ++r.stick_steps;
+      }
+    }
+  }
+  const Vec2 p1 = momentum();
+  r.dpy = p1.y() - p0.y();
+  r.dpx = p1.x() - p0.x();
+  r.vy_end = p1.y() / (m.rho * H * H);
+  return r;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(block_impact_timing_slip_and_momentum) {
+  const double mu = 0.3;
+  const BlockRun r = block(2.0, mu);
+  BOOST_TEST_MESSAGE("sliding block: first contact at " << r.t_first << " s (gap/velocity " << r.t_exact
+                                                       << " s, dt " << r.dt_first << "), slip steps " << r.slip_steps
+                                                       << ", stick steps " << r.stick_steps << ", max | |F_t|/(mu F_n) - 1 | "
+                                                       << r.max_slip_ratio_error << ", impulses n/t " << r.impulse_n
+                                                       << "/" << r.impulse_t << " vs momentum change " << r.dpy << "/"
+                                                       << r.dpx << ", rebound vy " << r.vy_end);
+  BOOST_TEST(r.t_first >= r.t_exact);
+  BOOST_TEST(r.t_first - r.dt_first < r.t_exact);
+  BOOST_TEST(r.slip_steps > 10);
+  BOOST_TEST(r.stick_steps == 0);
+  BOOST_TEST(r.max_slip_ratio_error < 1e-12);
+  BOOST_TEST(r.drag_opposes_slip);
+  // Reported forces are momentum-consistent: impulse on the floor = -(momentum change of block).
+  BOOST_TEST(std::abs(r.impulse_n - r.dpy) < 1e-9 * std::abs(r.dpy));
+  BOOST_TEST(std::abs(r.impulse_t + r.dpx) < 1e-9 * std::abs(r.dpx));
+  BOOST_TEST(std::abs(r.impulse_t / r.impulse_n - mu) < 1e-12);
+  BOOST_TEST(r.vy_end > 0.5);  // elastic rebound
+}
+
+BOOST_AUTO_TEST_CASE(block_impact_sticks_at_low_slip_speed) {
+  const double mu = 0.3;
+  const BlockRun r = block(0.02, mu);
+  BOOST_TEST_MESSAGE("slow block: stick steps " << r.stick_steps << ", slip steps " << r.slip_steps
+                                                 << ", max |F_t|/F_n " << r.max_ratio);
+  BOOST_TEST(r.stick_steps > 0);
+  BOOST_TEST(r.max_ratio <= mu * (1 + 1e-12));
+}
+
+namespace {
+struct PressedBlock {
+  double weight = 0, Fn_mean = 0, Ft_mean = 0, vx_end = 0, ax_expected = 0, ax = 0;
+  int stick_steps = 0, slip_steps = 0;
+};
+// A block resting on the floor under a body force g (down) and a tangential body force q g (+x):
+// time averages of the reported floor forces against the applied loads.
+PressedBlock pressed_block(double q, double mu) {
+  const Orthotropic m;
+  const double H = 0.005, g = 2.0e5;  // large g so that the static deflection spans many steps
+  const Discretisation d = rectangle(H, H, 6, 6, 2.5);
+  ExplicitOptions opt;
+  ExplicitEFG s(d, m, 0.0, opt);
+  std::vector<Vec2> f(d.nodes.size());
+  double M = 0.0;
+  for (std::size_t I = 0; I < f.size(); ++I) {
+    f[I] = s.masses()[I] * Vec2(q * g, -g);
+    M += s.masses()[I];
+  }
+  s.set_external_force(f);
+  RigidTool floor;
+  floor.vertices = {Vec2(-1, -1), Vec2(1, -1), Vec2(1, -1e-12), Vec2(-1, -1e-12)};
+  floor.mu = mu;
+  s.set_tool(floor);
+  PressedBlock r;
+  r.weight = M * g;
+  double T = 0, In = 0, It = 0, t_half = 0, vx_half = 0;
+  const int n = 6000;
+  for (int k = 0; k < n; ++k) {
+    const double dt = s.step();
+    if (k == n / 2) {
+      double p = 0;
+      for (std::size_t I = 0; I < f.size(); ++I) p += s.masses()[I] * s.velocities()[I].x();
+      vx_half = p / M;
+      t_half = s.time();
+    }
+    if (k >= n / 2) {
+      T += dt;
+      In += -s.tool_force().y() * dt;
+      It += s.tool_force().x() * dt;
+      if (s.contact_count() > 0) (s.stick_count() == s.contact_count() ? r.stick_steps : r.slip_steps)++;
+    }
+  }
+  double p = 0;
+  for (std::size_t I = 0; I < f.size(); ++I) p += s.masses()[I] * s.velocities()[I].x();
+  r.vx_end = p / M;
+  r.ax = (r.vx_end - vx_half) / (s.time() - t_half);
+  r.Fn_mean = In / T;
+  r.Ft_mean = It / T;
+  r.ax_expected = q > mu ? (q - mu) * g : 0.0;
+  return r;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(pressed_block_reported_forces_equal_loads) {
+  // Steady contact: the time-averaged reported normal force equals the weight (the Eq 39 value
+  // summed literally would be twice it); below mu the block sticks and the floor carries the
+  // tangential load; above mu it slides with F_t = mu F_n and acceleration (q - mu) g.
+  const double mu = 0.3;
+  const PressedBlock a = pressed_block(0.2, mu), b = pressed_block(0.5, mu);
+  BOOST_TEST_MESSAGE("pressed block q = 0.2: F_n/W " << a.Fn_mean / a.weight << ", F_t/W " << a.Ft_mean / a.weight
+                                                    << ", mean a_x " << a.ax << " m/s2, stick/slip steps " << a.stick_steps
+                                                    << "/" << a.slip_steps);
+  BOOST_TEST_MESSAGE("pressed block q = 0.5: F_n/W " << b.Fn_mean / b.weight << ", F_t/F_n " << b.Ft_mean / b.Fn_mean
+                                                    << ", a_x " << b.ax << " m/s2 (expected " << b.ax_expected
+                                                    << "), stick/slip steps " << b.stick_steps << "/" << b.slip_steps);
+  BOOST_TEST(std::abs(a.Fn_mean / a.weight - 1.0) < 0.02);
+  BOOST_TEST(std::abs(a.Ft_mean / a.weight - 0.2) < 0.01);
+  BOOST_TEST(std::abs(b.Fn_mean / b.weight - 1.0) < 0.02);
+  BOOST_TEST(std::abs(b.Ft_mean / b.Fn_mean - mu) < 0.01);
+  BOOST_TEST(std::abs(b.ax / b.ax_expected - 1.0) < 0.05);
+  BOOST_TEST(std::abs(a.ax) < 0.05 * b.ax_expected);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(cutting_prototype)
+
+BOOST_AUTO_TEST_CASE(tool_engages_at_gap_over_speed) {
+  // Smoke test of the PROTOTYPE cutting set-up (coarse, 10 um of travel): the tool first touches
+  // the workpiece within one step of gap/speed, the workpiece resists the advance (F_c > 0), the
+  // thrust pushes the tool away (F_t > 0) and LaRC02 damages Gauss points ahead of the edge.
+  // These are sanity checks, not a reproduction of Kahwash Tables 4-6.
+  CuttingSetup s;
+  s.lamina = gfrp_lamina();
+  s.theta = 30.0 * kPi / 180.0;
+  s.spacing = 0.05e-3;
+  s.time_scale = 50.0;
+  s.travel = 0.01e-3;
+  const CuttingResult r = run_cutting(s);
+  BOOST_TEST_MESSAGE("cutting smoke test: " << r.nodes << " nodes, " << r.steps << " steps, contact at "
+                                            << r.t_contact << " s (gap/speed " << r.t_contact_expected
+                                            << " s), F_c " << r.Fc_mean << " N/m, F_t " << r.Ft_mean
+                                            << " N/m, damaged fibre/matrix " << r.fibre_damaged << "/"
+                                            << r.matrix_damaged << " of " << r.gauss);
+  BOOST_TEST(r.t_contact >= r.t_contact_expected);
+  BOOST_TEST(r.t_contact < r.t_contact_expected + 1.01 * r.dt_initial);
+  BOOST_TEST(r.Fc_mean > 0.0);
+  BOOST_TEST(r.Ft_mean > 0.0);
+  BOOST_TEST(r.fibre_damaged + r.matrix_damaged > 0u);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -415,7 +415,9 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       c.series.push_back(std::move(ss));
     }
   }
-  if (c.implemented()) {
+  const bool any_pending = std::any_of(c.series.begin(), c.series.end(),
+                                       [](const SeriesSpec& ss) { return !ss.pending.empty(); });
+  if (c.implemented() && !any_pending) {  // a pending series may be the one taking a parameter
     for (const auto& [k, v] : global.items()) {
       if (!used_globals.count(k)) throw InputError("params." + k, "no series model takes this parameter");
     }

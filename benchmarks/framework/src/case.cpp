@@ -87,6 +87,14 @@ const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::str
   return nullptr;
 }
 
+// The numerical method a solver name belongs to ("mpm_cutting" -> "mpm"), or "" for other names.
+std::string solver_method(const std::string& model) {
+  for (const char* m : {"mpm", "sph", "limit", "efg"}) {
+    if (model.rfind(std::string(m) + "_", 0) == 0) return m;
+  }
+  return {};
+}
+
 // True when some registered solver belongs to this method ("mpm" -> "mpm_cutting", ...).
 bool solver_built(const std::string& method) {
   for (const auto& sv : SolverRegistry::instance().all()) {
@@ -291,9 +299,9 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       } else if (const auto* sv = solvers.find(ss.model)) {
         pspecs = &sv->params;
         ss.solver = true;
-      } else if (c.implemented() && ss.pending.empty() && c.solver != "analytic" &&
-                 ss.model.rfind(c.solver + "_", 0) == 0 && !solver_built(c.solver)) {
-        ss.pending = "the " + c.solver + " solver is not in this build (CUTBENCH_SOLVERS=OFF)";
+      } else if (c.implemented() && ss.pending.empty() && !solver_method(ss.model).empty() &&
+                 !solver_built(solver_method(ss.model))) {
+        ss.pending = "the " + solver_method(ss.model) + " solver is not in this build (CUTBENCH_SOLVERS=OFF)";
       } else if (c.implemented() && ss.pending.empty()) {
         throw InputError(sw + "model", "unknown model or solver '" + ss.model + "'");
       }

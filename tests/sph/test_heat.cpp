@@ -1,0 +1,199 @@
+// Transient conduction against analytic solutions; convection/radiation energy balance.
+#include <boost/test/unit_test.hpp>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+#include "cutbench/sph/heat.hpp"
+
+using namespace cutbench::sph;
+namespace tt = boost::test_tools;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+struct Block {
+  std::vector<Vec2> x;
+  std::vector<double> v;
+  std::vector<char> fixed;
+};
+
+// Cell-centred particles on [0, lx] x [0, ly] with spacing dx, plus `gx` Dirichlet layers beyond
+// x = 0 and x = lx and `gy` beyond y = 0 and y = ly.
+Block make_block(double lx, double ly, double dx, int gx, int gy) {
+  Block b;
+  const int nx = static_cast<int>(std::lround(lx / dx)), ny = static_cast<int>(std::lround(ly / dx));
+  for (int j = -gy; j < ny + gy; ++j)
+    for (int i = -gx; i < nx + gx; ++i) {
+      b.x.emplace_back((i + 0.5) * dx, (j + 0.5) * dx);
+      b.v.push_back(dx * dx);
+      b.fixed.push_back(i < 0 || i >= nx || j < 0 || j >= ny);
+    }
+  return b;
+}
+
+double max_error(const HeatConduction& s, const std::function<double(const Vec2&, double)>& exact,
+                 double scale) {
+  double e = 0.0;
+  for (std::size_t i = 0; i < s.positions().size(); ++i)
+    if (!s.dirichlet()[i]) e = std::max(e, std::abs(s.temperature()[i] - exact(s.positions()[i], s.time())));
+  return e / scale;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(heat_conduction)
+
+// 2D decaying mode sin(pi x) sin(pi y) exp(-2 pi^2 alpha t) on the unit square; three Dirichlet
+// layers (the support is 3 dx) hold the exact (odd-extended) solution.
+BOOST_AUTO_TEST_CASE(decaying_mode_2d_second_order) {
+  const double alpha = 1.0, t_end = 0.02;
+  const auto exact = [&](const Vec2& p, double t) {
+    return std::sin(kPi * p.x()) * std::sin(kPi * p.y()) * std::exp(-2.0 * kPi * kPi * alpha * t);
+  };
+  const double scale = std::exp(-2.0 * kPi * kPi * alpha * t_end);
+  std::vector<double> e_fmfs, e_brook;
+  const std::vector<int> ns{10, 20, 40};
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int n : ns) {
+    for (auto scheme : {HeatScheme::fmfs, HeatScheme::brookshaw}) {
+      const double dx = 1.0 / n;
+      auto b = make_block(1.0, 1.0, dx, 3, 3);
+      HeatOptions opt;
+      opt.scheme = scheme;
+      HeatConduction s(b.x, b.v, 1.5 * dx, HeatMaterial{1.0, 1.0, 1.0}, HeatBoundary{}, opt);
+      s.set_dirichlet(b.fixed, exact);
+      s.set_temperature(exact);
+      s.setup();
+      s.advance_to(t_end);
+      (scheme == HeatScheme::fmfs ? e_fmfs : e_brook).push_back(max_error(s, exact, scale));
+      if (scheme == HeatScheme::fmfs) {
+        std::size_t used = 0, free_count = 0;
+        for (std::size_t i = 0; i < b.x.size(); ++i) {
+          used += s.fmfs_used()[i] && !b.fixed[i];
+          free_count += !b.fixed[i];
+        }
+        BOOST_TEST(used == free_count);  // every free particle has full support: FMFS everywhere
+      }
+    }
+  }
+  for (std::size_t k = 0; k < ns.size(); ++k)
+    std::cout << "2D mode n=" << ns[k] << ": FMFS rel max err " << e_fmfs[k] << ", Brookshaw " << e_brook[k]
+              << (k ? "  FMFS order " + std::to_string(std::log2(e_fmfs[k - 1] / e_fmfs[k])) : std::string())
+              << "\n";
+  std::cout << "  (" << seconds_since(t0) << " s)\n";
+  BOOST_TEST(std::log2(e_fmfs[1] / e_fmfs[2]) > 1.8);
+  BOOST_TEST(std::log2(e_fmfs[0] / e_fmfs[1]) > 1.8);
+  BOOST_TEST(e_fmfs.back() < 2e-3);
+  // Brookshaw on a lattice with h/dx fixed carries a resolution-independent 0.67 % rate bias.
+  BOOST_TEST(e_brook.back() > 2.0 * e_fmfs.back());
+}
+
+// 1D mode sin(pi x) exp(-pi^2 alpha t) in a strip whose top and bottom are adiabatic free
+// surfaces: the paper's mixed scheme (FMFS inside, Brookshaw on the detected surface rows).
+BOOST_AUTO_TEST_CASE(decaying_mode_strip_with_free_surfaces) {
+  const double alpha = 1.0, t_end = 0.04;
+  const auto exact = [&](const Vec2& p, double t) {
+    return std::sin(kPi * p.x()) * std::exp(-kPi * kPi * alpha * t);
+  };
+  const double scale = std::exp(-kPi * kPi * alpha * t_end);
+  const std::vector<int> ns{10, 20, 40};
+  const char* names[3] = {"paper mixed (FMFS inside, Brookshaw on surface)", "Brookshaw band 2h", "Brookshaw"};
+  std::vector<double> err[3];
+  for (int n : ns) {
+    for (int variant = 0; variant < 3; ++variant) {
+      const double dx = 1.0 / n;
+      auto b = make_block(1.0, 0.3, dx, 3, 0);
+      HeatOptions opt;
+      opt.scheme = variant == 2 ? HeatScheme::brookshaw : HeatScheme::fmfs;
+      opt.brookshaw_band = variant == 1;
+      HeatConduction s(b.x, b.v, 1.5 * dx, HeatMaterial{1.0, 1.0, 1.0}, HeatBoundary{}, opt);
+      s.set_dirichlet(b.fixed, exact);
+      s.set_temperature(exact);
+      s.setup();
+      // exactly the top and bottom rows of the free particles are detected as surface
+      std::size_t wrong = 0;
+      for (std::size_t i = 0; i < b.x.size(); ++i) {
+        if (b.fixed[i]) continue;
+        const bool edge_row = b.x[i].y() < dx || b.x[i].y() > 0.3 - dx;
+        wrong += edge_row != static_cast<bool>(s.surface().surface[i]);
+      }
+      BOOST_TEST(wrong == 0u);
+      s.advance_to(t_end);
+      err[variant].push_back(max_error(s, exact, scale));
+    }
+  }
+  for (int variant = 0; variant < 3; ++variant) {
+    std::cout << "strip, " << names[variant] << ": rel max err";
+    for (double e : err[variant]) std::cout << " " << e;
+    std::cout << ", orders " << std::log2(err[variant][0] / err[variant][1]) << " "
+              << std::log2(err[variant][1] / err[variant][2]) << "\n";
+  }
+  // Brookshaw's truncated support at an adiabatic free surface makes every variant first order.
+  for (int variant = 0; variant < 3; ++variant) {
+    BOOST_TEST(std::log2(err[variant][1] / err[variant][2]) > 0.8);
+    BOOST_TEST(err[variant].back() < 0.03);
+  }
+}
+
+// Uniformly hot block losing heat by convection and radiation on all sides.
+BOOST_AUTO_TEST_CASE(convection_radiation_energy_balance) {
+  const double dx = 1e-4, T0 = 1000.0;
+  const HeatMaterial mat{50.0, 4430.0, 560.0};
+  const HeatBoundary bc{50.0, 0.3, 300.0};
+  for (int variant = 0; variant < 3; ++variant) {
+    const auto scheme = variant == 0 ? HeatScheme::brookshaw : HeatScheme::fmfs;
+    auto b = make_block(2e-3, 2e-3, dx, 0, 0);
+    HeatOptions opt;
+    opt.scheme = scheme;
+    opt.brookshaw_band = variant == 2;
+    HeatConduction s(b.x, b.v, 1.5 * dx, mat, bc, opt);
+    s.set_temperature(std::vector<double>(b.x.size(), T0));
+    s.setup();
+    BOOST_TEST(s.surface().count() == 4u * 20u - 4u);
+    double perimeter = 0.0, area = 0.0;
+    for (std::size_t i = 0; i < b.x.size(); ++i) {
+      area += b.v[i];
+      if (s.heat_loss_particles()[i]) perimeter += std::sqrt(b.v[i]);  // the surface length choice
+    }
+    const double e0 = s.thermal_energy();
+    const double t_end = 0.3;
+    s.advance_to(t_end);
+    const double lost = e0 - s.thermal_energy();
+    // lumped (Biot ~ 1e-3) reference: rho c A dT/dt = -P q(T), RK4
+    double T = T0;
+    const int m = 2000;
+    const double h = t_end / m, rc = mat.density * mat.specific_heat;
+    auto f = [&](double tt_) { return -perimeter * s.surface_flux(tt_) / (rc * area); };
+    for (int k = 0; k < m; ++k) {
+      const double k1 = f(T), k2 = f(T + 0.5 * h * k1), k3 = f(T + 0.5 * h * k2), k4 = f(T + h * k3);
+      T += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    const double lumped = rc * area * (T0 - T);
+    const char* names[3] = {"Brookshaw", "paper mixed", "Brookshaw band"};
+    std::cout << names[variant] << " energy balance: lost " << lost
+              << " J/m, integral of flux " << s.boundary_heat_loss() << " J/m, rel. imbalance "
+              << (lost - s.boundary_heat_loss()) / lost << ", lumped " << lumped << " (rel diff "
+              << (lost - lumped) / lumped << "), steps " << s.steps() << "\n";
+    const double imbalance = (lost - s.boundary_heat_loss()) / lost;
+    if (variant == 0) {
+      BOOST_TEST(std::abs(imbalance) < 1e-10);  // conservative pairwise form
+      BOOST_TEST(lost == lumped, tt::tolerance(2e-3));
+    } else if (variant == 1) {
+      // KNOWN DEFECT of the paper's mixed scheme: the FMFS rows next to the surface read the
+      // Brookshaw surface row's kink and drain ~15 % more heat than leaves through the boundary;
+      // the excess does not shrink with resolution (13 %, 16 %, 17 % at dx = L/10, L/20, L/40).
+      // Guarded here so that a change is noticed; see solvers/sph/README.md.
+      BOOST_TEST(imbalance > 0.0);
+      BOOST_TEST(imbalance < 0.25);
+    } else {
+      BOOST_TEST(std::abs(imbalance) < 1e-2);
+      BOOST_TEST(lost == lumped, tt::tolerance(1e-2));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "cutbench/common/errors.hpp"
+#include "parallel.hpp"
 
 namespace cutbench::sph {
 
@@ -51,7 +52,7 @@ NeighbourList build_neighbours(const std::vector<Vec2>& x, double radius) {
 
   const double r2 = radius * radius;
   std::vector<std::vector<std::uint32_t>> rows(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     long cx, cy;
     cell_of(x[i], cx, cy);

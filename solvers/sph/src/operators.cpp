@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cutbench/common/errors.hpp"
+#include "parallel.hpp"
 
 namespace cutbench::sph {
 
@@ -18,7 +19,7 @@ std::vector<Mat2> renormalisation_matrices(const ParticleView& p) {
   check_sizes(p);
   const std::size_t n = p.x.size();
   std::vector<Mat2> out(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     Mat2 l = Mat2::Zero();
     for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
@@ -53,9 +54,10 @@ double laplacian_brookshaw_at(const ParticleView& p, const std::vector<double>& 
 std::vector<double> laplacian_brookshaw(const ParticleView& p, const std::vector<double>& f) {
   check_sizes(p);
   if (f.size() != p.x.size()) throw InputError("field", "size differs from the particle count");
-  std::vector<double> out(p.x.size());
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < p.x.size(); ++i) out[i] = laplacian_brookshaw_at(p, f, i);
+  const std::size_t n = p.x.size();
+  std::vector<double> out(n);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) out[i] = laplacian_brookshaw_at(p, f, i);
   return out;
 }
 
@@ -65,7 +67,7 @@ void FmfsLaplacian::update(const ParticleView& p) {
   corr_.assign(n, Mat2::Zero());
   bhat_.assign(n, Mat2::Zero());
   regular_.assign(n, 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     // b_kl = sum V (gradW)_k (x_ij)_l ; A_pqk ; C_lrs ; E_pqrs (EQUATIONS.md D1).
     Mat2 b = Mat2::Zero();
@@ -137,9 +139,10 @@ Vec2 FmfsLaplacian::gradient_at(const ParticleView& p, const std::vector<double>
 std::vector<Vec2> FmfsLaplacian::gradient(const ParticleView& p, const std::vector<double>& f) const {
   check_sizes(p);
   if (corr_.size() != p.x.size()) throw InputError("fmfs", "update() not called for this configuration");
-  std::vector<Vec2> out(p.x.size());
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < p.x.size(); ++i) out[i] = gradient_at(p, f, i);
+  const std::size_t n = p.x.size();
+  std::vector<Vec2> out(n);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) out[i] = gradient_at(p, f, i);
   return out;
 }
 
@@ -168,7 +171,7 @@ std::vector<double> FmfsLaplacian::laplacian(const ParticleView& p, const std::v
   const std::size_t n = p.x.size();
   std::vector<double> out(n);
   if (fmfs_used) fmfs_used->assign(n, 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     const bool fm = regular_[i] && (!use_fmfs || (*use_fmfs)[i]);
     out[i] = fm ? laplacian_at(p, f, i) : laplacian_brookshaw_at(p, f, i);

@@ -1,5 +1,7 @@
 #include "cutbench/sph/surface.hpp"
 
+#include "parallel.hpp"
+
 #include <Eigen/Dense>
 #include <cmath>
 
@@ -20,7 +22,7 @@ SurfaceDetection detect_free_surface(const ParticleView& p, const SurfaceOptions
   out.normal.assign(n, Vec2::Zero());
   const double h = p.kernel.h();
   const double sqrt2h = std::sqrt(2.0) * h;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     const double lam = smallest_eigenvalue(l[i]);
     out.lambda[i] = lam;

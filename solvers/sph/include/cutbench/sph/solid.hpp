@@ -1,0 +1,91 @@
+#pragma once
+// Updated-Lagrangian solid SPH in 2D plane strain (Afrasiabi et al. 2021, Eqs. 1-3, 10, 11).
+//
+//   drho_i/dt = -rho_i sum_j (v_j - v_i) . gradW_ij V_j                                  (10)
+//   dv_i/dt   = sum_j m_j (sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + f_ij^4 (R_i + R_j)) gradW_ij
+//   (grad v)_i = sum_j V_j (v_j - v_i) (x) gradW_ij        [optionally times L_i^{-1}]
+//   dS/dt = 2G (D - tr(D)/3 I) + Omega S - S Omega (Jaumann), p = K (rho/rho0 - 1), sigma = -p I + S
+//   J2 plasticity by radial return on S with Johnson-Cook flow stress (optional).
+//
+// Pi_ij: Monaghan artificial viscosity (alpha, beta, eta = 0.1 h). R_i: Monaghan/Gray artificial
+// stress, R = -eps sigma'_+ / rho^2 in the principal frame, f_ij = W(r_ij)/W(dx). XSPH position
+// smoothing: dx_i/dt = v_i + eps_x sum_j m_j/rhobar_ij (v_j - v_i) W_ij.
+//
+// Time integration, kick-drift-kick (second order): v^{n+1/2} = v^n + dt/2 a^n; rates of rho and S
+// from v^{n+1/2} on x^n; x^{n+1} = x^n + dt (v^{n+1/2} + XSPH); a^{n+1}; v^{n+1} = v^{n+1/2} + dt/2 a^{n+1}.
+// dt = cfl h / (c + max |v|), c = sqrt((K + 4G/3) / rho0).
+#include <cmath>
+#include <vector>
+
+#include "cutbench/sph/johnson_cook.hpp"
+#include "cutbench/sph/neighbours.hpp"
+
+namespace cutbench::sph {
+
+struct SolidMaterial {
+  double density = 4430.0;   // kg/m^3
+  double young = 113.8e9;    // Pa
+  double poisson = 0.35;
+  bool plastic = false;
+  JohnsonCook jc;
+
+  double shear() const { return young / (2.0 * (1.0 + poisson)); }
+  double bulk() const { return young / (3.0 * (1.0 - 2.0 * poisson)); }
+  double p_wave_speed() const { return std::sqrt((bulk() + 4.0 / 3.0 * shear()) / density); }
+  double bulk_speed() const { return std::sqrt(bulk() / density); }
+};
+
+struct SolidOptions {
+  double alpha_visc = 1.0, beta_visc = 1.0;  // Monaghan artificial viscosity
+  double artificial_stress = 0.3;            // eps of Gray et al. (0 = off)
+  double xsph = 0.5;                         // XSPH eps (0 = off)
+  double cfl = 0.3;
+  bool correct_velocity_gradient = false;    // multiply grad v by L_i^{-1} (renormalisation)
+};
+
+class SolidSph {
+public:
+  // dx: initial particle spacing (volume dx^2, mass rho0 dx^2 unless set_masses), h = h_over_dx dx.
+  SolidSph(std::vector<Vec2> x, double dx, SolidMaterial material, SolidOptions options = {},
+           double h_over_dx = 1.5);
+
+  std::vector<Vec2>& velocity() { return v_; }
+  const std::vector<Vec2>& velocity() const { return v_; }
+  const std::vector<Vec2>& positions() const { return x_; }
+  const std::vector<double>& density() const { return rho_; }
+  const std::vector<double>& mass() const { return m_; }
+  const std::vector<double>& plastic_strain() const { return eps_p_; }
+  std::vector<double>& temperature() { return T_; }
+  const std::vector<Stress3>& deviator() const { return S_; }
+  std::vector<double> pressure() const;
+
+  // Particles with prescribed (constant) velocity: their acceleration is discarded.
+  void set_fixed(std::vector<char> fixed);
+
+  double stable_time_step() const;
+  void step(double dt);
+  double time() const { return time_; }
+  std::size_t steps() const { return steps_; }
+
+  Vec2 momentum() const;
+  double kinetic_energy() const;
+  double strain_energy() const;  // elastic: sum V (p^2/(2K) + S:S/(4G))
+
+private:
+  std::vector<Vec2> x_, v_, a_;
+  std::vector<double> m_, rho_, eps_p_, T_;
+  std::vector<Stress3> S_;
+  std::vector<char> fixed_;
+  SolidMaterial mat_;
+  SolidOptions opt_;
+  CubicSpline2D kernel_;
+  double dx_, w_dx_;
+  NeighbourList nl_;
+  double time_ = 0.0;
+  std::size_t steps_ = 0;
+  bool have_accel_ = false;
+
+  void accelerations();
+};
+
+}  // namespace cutbench::sph

@@ -1,0 +1,180 @@
+#include "cutbench/sph/solid.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "cutbench/common/errors.hpp"
+#include "parallel.hpp"
+
+namespace cutbench::sph {
+
+namespace {
+Stress3 embed(const Mat2& m) {
+  Stress3 r = Stress3::Zero();
+  r.topLeftCorner<2, 2>() = m;
+  return r;
+}
+}  // namespace
+
+SolidSph::SolidSph(std::vector<Vec2> x, double dx, SolidMaterial material, SolidOptions options,
+                   double h_over_dx)
+    : x_(std::move(x)), mat_(material), opt_(options), kernel_(h_over_dx * dx), dx_(dx) {
+  if (!(dx > 0.0)) throw InputError("dx", "particle spacing must be positive");
+  if (!(mat_.density > 0.0) || !(mat_.young > 0.0) || !(mat_.poisson > -1.0 && mat_.poisson < 0.5))
+    throw InputError("material", "rho > 0, E > 0 and -1 < nu < 0.5 required");
+  const std::size_t n = x_.size();
+  v_.assign(n, Vec2::Zero());
+  a_.assign(n, Vec2::Zero());
+  m_.assign(n, mat_.density * dx * dx);
+  rho_.assign(n, mat_.density);
+  eps_p_.assign(n, 0.0);
+  T_.assign(n, mat_.jc.T_ref);
+  S_.assign(n, Stress3::Zero());
+  fixed_.assign(n, 0);
+  w_dx_ = kernel_.value(dx);
+}
+
+void SolidSph::set_fixed(std::vector<char> fixed) {
+  if (fixed.size() != x_.size()) throw InputError("fixed", "mask size differs from the particle count");
+  fixed_ = std::move(fixed);
+}
+
+std::vector<double> SolidSph::pressure() const {
+  std::vector<double> p(x_.size());
+  for (std::size_t i = 0; i < x_.size(); ++i) p[i] = mat_.bulk() * (rho_[i] / mat_.density - 1.0);
+  return p;
+}
+
+double SolidSph::stable_time_step() const {
+  double vmax = 0.0;
+  for (const auto& v : v_) vmax = std::max(vmax, v.norm());
+  return opt_.cfl * kernel_.h() / (mat_.p_wave_speed() + vmax);
+}
+
+void SolidSph::accelerations() {
+  nl_ = build_neighbours(x_, kernel_.support());
+  const std::size_t n = x_.size();
+  const double K = mat_.bulk(), c0 = mat_.bulk_speed(), h = kernel_.h();
+  std::vector<Stress3> sig_r2(n);   // sigma / rho^2
+  std::vector<Mat2> art(n, Mat2::Zero());  // artificial stress R_i
+  for (std::size_t i = 0; i < n; ++i) {
+    const double p = K * (rho_[i] / mat_.density - 1.0);
+    const Stress3 sig = S_[i] - p * Stress3::Identity();
+    sig_r2[i] = sig / (rho_[i] * rho_[i]);
+    if (opt_.artificial_stress > 0.0) {
+      const Mat2 s2 = sig.topLeftCorner<2, 2>();
+      Eigen::SelfAdjointEigenSolver<Mat2> es(s2);
+      Vec2 r = Vec2::Zero();
+      for (int k = 0; k < 2; ++k)
+        if (es.eigenvalues()[k] > 0.0) r[k] = -opt_.artificial_stress * es.eigenvalues()[k] / (rho_[i] * rho_[i]);
+      art[i] = es.eigenvectors() * r.asDiagonal() * es.eigenvectors().transpose();
+    }
+  }
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec2 acc = Vec2::Zero();
+    const Mat2 si = sig_r2[i].topLeftCorner<2, 2>();
+    for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
+      const std::size_t j = nl_.index[k];
+      const Vec2 xij = x_[i] - x_[j];
+      const double r = xij.norm();
+      const Vec2 gw = kernel_.gradient(xij, r);
+      Mat2 t = si + sig_r2[j].topLeftCorner<2, 2>();
+      const Vec2 vij = v_[i] - v_[j];
+      const double vr = vij.dot(xij);
+      if (vr < 0.0 && (opt_.alpha_visc > 0.0 || opt_.beta_visc > 0.0)) {
+        const double mu = h * vr / (r * r + 0.01 * h * h);
+        const double rhobar = 0.5 * (rho_[i] + rho_[j]);
+        const double pi = (-opt_.alpha_visc * c0 * mu + opt_.beta_visc * mu * mu) / rhobar;
+        t.diagonal().array() -= pi;
+      }
+      if (opt_.artificial_stress > 0.0) {
+        const double f = kernel_.value(r) / w_dx_;
+        const double f2 = f * f;
+        t += (f2 * f2) * (art[i] + art[j]);
+      }
+      acc.noalias() += m_[j] * (t * gw);
+    }
+    a_[i] = fixed_[i] ? Vec2::Zero() : acc;
+  }
+  have_accel_ = true;
+}
+
+void SolidSph::step(double dt) {
+  if (!(dt > 0.0)) throw InputError("dt", "time step must be positive");
+  const std::size_t n = x_.size();
+  if (!have_accel_) accelerations();
+  // kick
+  for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
+  // rates on x^n with v^{n+1/2} (nl_ belongs to x^n)
+  const double G = mat_.shear();
+  std::vector<Vec2> xsph(n, Vec2::Zero());
+  std::vector<double> rho_new(n);
+  std::vector<Stress3> s_new(n);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) {
+    Mat2 gv = Mat2::Zero(), lren = Mat2::Zero();
+    Vec2 xs = Vec2::Zero();
+    for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
+      const std::size_t j = nl_.index[k];
+      const Vec2 xij = x_[i] - x_[j];
+      const double r = xij.norm();
+      const Vec2 gw = kernel_.gradient(xij, r);
+      const double vj = m_[j] / rho_[j];
+      gv.noalias() += vj * (v_[j] - v_[i]) * gw.transpose();
+      if (opt_.correct_velocity_gradient) lren.noalias() -= vj * xij * gw.transpose();
+      if (opt_.xsph > 0.0) xs += (m_[j] / (0.5 * (rho_[i] + rho_[j])) * kernel_.value(r)) * (v_[j] - v_[i]);
+    }
+    if (opt_.correct_velocity_gradient && std::abs(lren.determinant()) > 1e-6) gv = gv * lren.inverse();
+    xsph[i] = opt_.xsph * xs;
+    const Mat2 d2 = 0.5 * (gv + gv.transpose());
+    const Mat2 w2 = 0.5 * (gv - gv.transpose());
+    const Stress3 d = embed(d2), w = embed(w2);
+    const double trd = d.trace();
+    rho_new[i] = rho_[i] * (1.0 - dt * trd);
+    const Stress3 dev = d - trd / 3.0 * Stress3::Identity();
+    Stress3 s = S_[i] + dt * (2.0 * G * dev + w * S_[i] - S_[i] * w);
+    if (mat_.plastic) {
+      const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i]);
+      s = rr.deviator;
+      eps_p_[i] += rr.delta_eps_p;
+    }
+    s_new[i] = s;
+  }
+  rho_.swap(rho_new);
+  S_.swap(s_new);
+  // drift
+  for (std::size_t i = 0; i < n; ++i) {
+    x_[i] += dt * (v_[i] + xsph[i]);
+    if (!x_[i].allFinite()) throw NumericalError("sph solid: non-finite particle position");
+  }
+  accelerations();
+  for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
+  time_ += dt;
+  ++steps_;
+}
+
+Vec2 SolidSph::momentum() const {
+  Vec2 p = Vec2::Zero();
+  for (std::size_t i = 0; i < x_.size(); ++i) p += m_[i] * v_[i];
+  return p;
+}
+
+double SolidSph::kinetic_energy() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < x_.size(); ++i) e += 0.5 * m_[i] * v_[i].squaredNorm();
+  return e;
+}
+
+double SolidSph::strain_energy() const {
+  const double K = mat_.bulk(), G = mat_.shear();
+  double e = 0.0;
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    const double p = K * (rho_[i] / mat_.density - 1.0);
+    e += m_[i] / rho_[i] * (p * p / (2.0 * K) + (S_[i].array() * S_[i].array()).sum() / (4.0 * G));
+  }
+  return e;
+}
+
+}  // namespace cutbench::sph

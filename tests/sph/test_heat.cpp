@@ -197,3 +197,26 @@ BOOST_AUTO_TEST_CASE(convection_radiation_energy_balance) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+#include "cutbench/sph/runners.hpp"
+
+BOOST_AUTO_TEST_CASE(registered_heat_runner) {
+  cutbench::SolverRegistry reg;
+  register_solvers(reg);
+  register_solvers(reg);
+  BOOST_TEST(reg.all().size() == 2u);
+  const auto* spec = reg.find("sph_heat");
+  BOOST_REQUIRE(spec);
+  cutbench::Values v;
+  for (const auto& p : spec->params) v[p.name] = *p.default_value;
+  const auto mode = spec->run(v, nullptr);
+  BOOST_TEST(mode.scalars.at("max_rel_error") < 2e-3);
+  BOOST_TEST(mode.tables.at(0).rows() == 20u);
+  v["problem"] = 1.0;
+  v["scheme"] = 1.0;
+  v["n"] = 10.0;
+  v["t_end"] = 0.05;
+  const auto cool = spec->run(v, nullptr);
+  BOOST_TEST(std::abs(cool.scalars.at("energy_imbalance")) < 1e-10);
+  BOOST_TEST(cool.scalars.at("energy_lost") > 0.0);
+}

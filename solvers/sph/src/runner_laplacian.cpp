@@ -134,8 +134,11 @@ SolverSpec laplacian_spec() {
 
 }  // namespace
 
+SolverSpec heat_spec();  // runner_heat.cpp
+
 void register_solvers(SolverRegistry& registry) {
   if (!registry.find("sph_laplacian")) registry.add(laplacian_spec());
+  if (!registry.find("sph_heat")) registry.add(heat_spec());
 }
 
 }  // namespace cutbench::sph

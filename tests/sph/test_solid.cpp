@@ -87,3 +87,50 @@ BOOST_AUTO_TEST_CASE(bar_wave_speed) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(thermo_mechanical)
+
+// Homogeneous pure shear imposed on every particle; J-C without rate and thermal terms, no surface
+// losses: plastic heating must give dT = chi (A eps_p + B eps_p^(n+1)/(n+1)) / (rho c_p) at every
+// particle (uniform T, so conduction adds nothing), and the stress must sit on the yield surface.
+BOOST_AUTO_TEST_CASE(adiabatic_plastic_heating) {
+  const int n = 16;
+  const double dx = 1e-5;
+  auto x = rectangle_lattice(n, n, 0.0, (n - 1) * dx, 0.0, (n - 1) * dx);
+  SolidMaterial mat;
+  mat.plastic = true;
+  mat.jc.C = 0.0;
+  mat.jc.T_melt = 1e12;  // no thermal softening
+  SolidOptions opt;
+  opt.correct_velocity_gradient = true;  // exact gradient of a linear field at every particle
+  opt.alpha_visc = opt.beta_visc = opt.artificial_stress = opt.xsph = 0.0;
+  SolidSph s(x, dx, mat, opt);
+  const double gamma_dot = 2e6;
+  const Vec2 c(0.5 * (n - 1) * dx, 0.5 * (n - 1) * dx);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    s.velocity()[i] = 0.5 * gamma_dot * Vec2(x[i].y() - c.y(), x[i].x() - c.x());
+  s.set_fixed(std::vector<char>(x.size(), 1));
+  ThermalOptions th;
+  th.boundary = HeatBoundary{0.0, 0.0, 300.0};
+  s.enable_thermal(th, std::vector<char>(x.size(), 0));
+  const double t_end = 0.25 / gamma_dot;
+  while (s.time() < t_end) s.step(s.stable_time_step());
+  double tmin = 1e300, tmax = -1e300;
+  for (double t : s.temperature()) {
+    tmin = std::min(tmin, t);
+    tmax = std::max(tmax, t);
+  }
+  const double ep = s.plastic_strain()[0];
+  const auto& jc = mat.jc;
+  const double wp = jc.A * ep + jc.B * std::pow(ep, jc.n + 1.0) / (jc.n + 1.0);
+  const double dT = th.taylor_quinney * wp / (th.heat.density * th.heat.specific_heat);
+  std::cout << "adiabatic heating: eps_p " << ep << ", dT SPH " << tmax - 300.0 << " K, closed form " << dT
+            << " K, spread " << tmax - tmin << " K, steps " << s.steps() << "\n";
+  BOOST_TEST(ep > 0.05);
+  BOOST_TEST(tmax - tmin < 1e-6 * dT);
+  BOOST_TEST(tmax - 300.0 == dT, tt::tolerance(2e-3));
+  const double q = von_mises(s.deviator()[0]);
+  BOOST_TEST(q == jc.flow_stress(ep, 0.0, s.temperature()[0]), tt::tolerance(1e-9));
+}
+
+BOOST_AUTO_TEST_SUITE_END()

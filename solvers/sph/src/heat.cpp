@@ -40,16 +40,7 @@ void HeatConduction::setup() {
   const ParticleView view{x_, V_, nl_, kernel_};
   surface_ = detect_free_surface(view, opt_.surface);
   if (opt_.scheme == HeatScheme::fmfs) fmfs_.update(view);
-  const std::size_t n = x_.size();
-  loss_.assign(n, 0);
-  use_fmfs_.assign(n, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    loss_[i] = surface_.surface[i] && !fixed_[i];
-    use_fmfs_[i] = !surface_.surface[i];
-    if (opt_.brookshaw_band)
-      for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k)
-        if (surface_.surface[nl_.index[k]]) use_fmfs_[i] = 0;
-  }
+  heat_masks(nl_, surface_, fixed_, opt_.brookshaw_band, use_fmfs_, loss_);
   ready_ = true;
   apply_dirichlet();
 }
@@ -64,39 +55,63 @@ double HeatConduction::stable_time_step() const {
   return opt_.cfl * kernel_.h() * kernel_.h() / mat_.diffusivity();
 }
 
-double HeatConduction::surface_flux(double T) const {
-  const double t4 = T * T * T * T, a4 = bc_.T_ambient * bc_.T_ambient * bc_.T_ambient * bc_.T_ambient;
-  return bc_.h_conv * (T - bc_.T_ambient) + bc_.emissivity * kStefanBoltzmann * (t4 - a4);
+double surface_flux(const HeatBoundary& bc, double T) {
+  const double t4 = T * T * T * T, a4 = bc.T_ambient * bc.T_ambient * bc.T_ambient * bc.T_ambient;
+  return bc.h_conv * (T - bc.T_ambient) + bc.emissivity * kStefanBoltzmann * (t4 - a4);
+}
+
+double HeatConduction::surface_flux(double T) const { return sph::surface_flux(bc_, T); }
+
+void heat_masks(const NeighbourList& nl, const SurfaceDetection& surface, const std::vector<char>& fixed,
+                bool band, std::vector<char>& use_fmfs, std::vector<char>& loss) {
+  const std::size_t n = nl.size();
+  loss.assign(n, 0);
+  use_fmfs.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    loss[i] = surface.surface[i] && !fixed[i];
+    use_fmfs[i] = !surface.surface[i];
+    if (band)
+      for (std::size_t k = nl.begin(i); k < nl.end(i); ++k)
+        if (surface.surface[nl.index[k]]) use_fmfs[i] = 0;
+  }
+}
+
+double heat_rates(const ParticleView& p, const std::vector<double>& T, const FmfsLaplacian* fmfs,
+                  const std::vector<char>& use_fmfs, const std::vector<char>& fixed,
+                  const std::vector<char>& loss, const HeatMaterial& mat, const HeatBoundary& bc,
+                  std::vector<double>& rate, std::vector<char>* fmfs_used) {
+  if (fmfs) {
+    rate = fmfs->laplacian(p, T, &use_fmfs, fmfs_used);
+  } else {
+    rate = laplacian_brookshaw(p, T);
+    if (fmfs_used) fmfs_used->assign(p.x.size(), 0);
+  }
+  const double alpha = mat.diffusivity(), rc = mat.density * mat.specific_heat;
+  double total = 0.0;
+  for (std::size_t i = 0; i < p.x.size(); ++i) {
+    if (fixed[i]) {
+      rate[i] = 0.0;
+      continue;
+    }
+    double d = alpha * rate[i];
+    if (loss[i]) {
+      const double l = std::sqrt(p.volume[i]);
+      const double q = surface_flux(bc, T[i]);
+      d -= q * l / (p.volume[i] * rc);
+      total += q * l;
+    }
+    rate[i] = d;
+  }
+  return total;
 }
 
 std::vector<double> HeatConduction::rate(double& heat_loss_rate) {
   if (!ready_) throw InputError("heat", "setup() must be called before stepping");
   const ParticleView view{x_, V_, nl_, kernel_};
-  std::vector<double> lap;
-  if (opt_.scheme == HeatScheme::fmfs) {
-    lap = fmfs_.laplacian(view, T_, &use_fmfs_, &fmfs_used_);
-  } else {
-    lap = laplacian_brookshaw(view, T_);
-    fmfs_used_.assign(x_.size(), 0);
-  }
-  const double alpha = mat_.diffusivity(), rc = mat_.density * mat_.specific_heat;
-  double loss = 0.0;
-  for (std::size_t i = 0; i < x_.size(); ++i) {
-    if (fixed_[i]) {
-      lap[i] = 0.0;
-      continue;
-    }
-    double d = alpha * lap[i];
-    if (loss_[i]) {
-      const double l = std::sqrt(V_[i]);
-      const double q = surface_flux(T_[i]);
-      d -= q * l / (V_[i] * rc);
-      loss += q * l;
-    }
-    lap[i] = d;
-  }
-  heat_loss_rate = loss;
-  return lap;
+  std::vector<double> r;
+  heat_loss_rate = heat_rates(view, T_, opt_.scheme == HeatScheme::fmfs ? &fmfs_ : nullptr, use_fmfs_, fixed_,
+                              loss_, mat_, bc_, r, &fmfs_used_);
+  return r;
 }
 
 void HeatConduction::step(double dt) {

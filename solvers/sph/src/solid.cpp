@@ -40,6 +40,41 @@ void SolidSph::set_fixed(std::vector<char> fixed) {
   fixed_ = std::move(fixed);
 }
 
+void SolidSph::enable_thermal(ThermalOptions options, std::vector<char> fixed_temperature) {
+  if (fixed_temperature.size() != x_.size())
+    throw InputError("fixed_temperature", "mask size differs from the particle count");
+  if (!(options.heat.conductivity > 0.0) || !(options.heat.density > 0.0) || !(options.heat.specific_heat > 0.0))
+    throw InputError("thermal", "k, rho and c_p must be positive");
+  th_ = options;
+  t_fixed_ = std::move(fixed_temperature);
+  thermal_ = true;
+}
+
+void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) {
+  // Called with nl_, x_ and rho_ of the start of the step.
+  const std::size_t n = x_.size();
+  std::vector<double> vol(n);
+  for (std::size_t i = 0; i < n; ++i) vol[i] = m_[i] / rho_[i];
+  const ParticleView view{x_, vol, nl_, kernel_};
+  surface_ = detect_free_surface(view, th_.surface);
+  std::vector<char> use_fmfs, loss;
+  heat_masks(nl_, surface_, t_fixed_, th_.brookshaw_band, use_fmfs, loss);
+  const FmfsLaplacian* fm = nullptr;
+  if (th_.scheme == HeatScheme::fmfs) {
+    fmfs_.update(view);
+    fm = &fmfs_;
+  }
+  std::vector<double> rate;
+  const double lost = heat_rates(view, T_, fm, use_fmfs, t_fixed_, loss, th_.heat, th_.boundary, rate);
+  heat_lost_ += dt * lost;
+  const double rc = th_.heat.density * th_.heat.specific_heat;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (t_fixed_[i]) continue;
+    T_[i] += dt * rate[i] + plastic_dT[i];
+    plastic_heat_ += plastic_dT[i] * rc * vol[i];
+  }
+}
+
 std::vector<double> SolidSph::pressure() const {
   std::vector<double> p(x_.size());
   for (std::size_t i = 0; i < x_.size(); ++i) p[i] = mat_.bulk() * (rho_[i] / mat_.density - 1.0);
@@ -49,7 +84,9 @@ std::vector<double> SolidSph::pressure() const {
 double SolidSph::stable_time_step() const {
   double vmax = 0.0;
   for (const auto& v : v_) vmax = std::max(vmax, v.norm());
-  return opt_.cfl * kernel_.h() / (mat_.p_wave_speed() + vmax);
+  double dt = opt_.cfl * kernel_.h() / (mat_.p_wave_speed() + vmax);
+  if (thermal_) dt = std::min(dt, 0.1 * kernel_.h() * kernel_.h() / th_.heat.diffusivity());
+  return dt;
 }
 
 void SolidSph::accelerations() {
@@ -112,6 +149,9 @@ void SolidSph::step(double dt) {
   std::vector<Vec2> xsph(n, Vec2::Zero());
   std::vector<double> rho_new(n);
   std::vector<Stress3> s_new(n);
+  std::vector<double> plastic_dT(n, 0.0);
+  const double chi_rc =
+      thermal_ ? th_.taylor_quinney / (th_.heat.density * th_.heat.specific_heat) : 0.0;
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     Mat2 gv = Mat2::Zero(), lren = Mat2::Zero();
@@ -139,9 +179,11 @@ void SolidSph::step(double dt) {
       const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i]);
       s = rr.deviator;
       eps_p_[i] += rr.delta_eps_p;
+      plastic_dT[i] = chi_rc * rr.flow_stress * rr.delta_eps_p;
     }
     s_new[i] = s;
   }
+  if (thermal_) thermal_update(dt, plastic_dT);
   rho_.swap(rho_new);
   S_.swap(s_new);
   // drift

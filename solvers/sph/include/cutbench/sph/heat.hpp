@@ -47,6 +47,21 @@ struct HeatOptions {
   bool brookshaw_band = false;
 };
 
+// dT/dt from conduction (FMFS where use_fmfs[i] and the particle is regular, else Brookshaw; pass
+// fmfs = nullptr for Brookshaw everywhere) and surface losses at particles with loss[i]; zero at
+// fixed (Dirichlet) particles. Returns sum_i q_i l_i (W per metre of depth).
+double heat_rates(const ParticleView& p, const std::vector<double>& T, const FmfsLaplacian* fmfs,
+                  const std::vector<char>& use_fmfs, const std::vector<char>& fixed,
+                  const std::vector<char>& loss, const HeatMaterial& mat, const HeatBoundary& bc,
+                  std::vector<double>& rate, std::vector<char>* fmfs_used = nullptr);
+
+// Which particles use FMFS (not surface; with `band`, also not next to a surface particle) and
+// which lose heat (surface and not fixed).
+void heat_masks(const NeighbourList& nl, const SurfaceDetection& surface, const std::vector<char>& fixed,
+                bool band, std::vector<char>& use_fmfs, std::vector<char>& loss);
+
+double surface_flux(const HeatBoundary& bc, double T);
+
 class HeatConduction {
 public:
   using Field = std::function<double(const Vec2&, double)>;

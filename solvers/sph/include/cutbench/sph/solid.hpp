@@ -17,6 +17,7 @@
 #include <cmath>
 #include <vector>
 
+#include "cutbench/sph/heat.hpp"
 #include "cutbench/sph/johnson_cook.hpp"
 #include "cutbench/sph/neighbours.hpp"
 
@@ -43,6 +44,18 @@ struct SolidOptions {
   bool correct_velocity_gradient = false;    // multiply grad v by L_i^{-1} (renormalisation)
 };
 
+// Heat equation on the moving particles (Eq. 4): conduction with V_j = m_j / rho_j, surface
+// detection and FMFS geometry recomputed every step, plastic heating chi sigma_y d(eps_p) / (rho c_p)
+// per step (Eq. 5), convection and radiation on the detected surface, fixed-temperature particles.
+struct ThermalOptions {
+  HeatMaterial heat{7.3, 4430.0, 580.0};  // Ti6Al4V, paper Table 1
+  HeatBoundary boundary{50.0, 0.3, 300.0};
+  HeatScheme scheme = HeatScheme::fmfs;
+  bool brookshaw_band = false;
+  SurfaceOptions surface;
+  double taylor_quinney = 0.9;  // chi
+};
+
 class SolidSph {
 public:
   // dx: initial particle spacing (volume dx^2, mass rho0 dx^2 unless set_masses), h = h_over_dx dx.
@@ -61,6 +74,11 @@ public:
 
   // Particles with prescribed (constant) velocity: their acceleration is discarded.
   void set_fixed(std::vector<char> fixed);
+  // Switch on the heat equation; particles with fixed_temperature[i] keep their temperature.
+  void enable_thermal(ThermalOptions options, std::vector<char> fixed_temperature);
+  const SurfaceDetection& surface() const { return surface_; }
+  double plastic_heat() const { return plastic_heat_; }  // J per metre of depth, accumulated
+  double boundary_heat_loss() const { return heat_lost_; }
 
   double stable_time_step() const;
   void step(double dt);
@@ -84,6 +102,14 @@ private:
   double time_ = 0.0;
   std::size_t steps_ = 0;
   bool have_accel_ = false;
+  bool thermal_ = false;
+  ThermalOptions th_;
+  std::vector<char> t_fixed_;
+  SurfaceDetection surface_;
+  FmfsLaplacian fmfs_;
+  double plastic_heat_ = 0.0, heat_lost_ = 0.0;
+
+  void thermal_update(double dt, const std::vector<double>& plastic_dT);
 
   void accelerations();
 };

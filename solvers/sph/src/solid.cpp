@@ -133,7 +133,7 @@ void SolidSph::accelerations() {
       }
       acc.noalias() += m_[j] * (t * gw);
     }
-    a_[i] = fixed_[i] ? Vec2::Zero() : acc;
+    a_[i] = fixed_[i] ? Vec2::Zero() : Vec2(acc + opt_.body_force);
   }
   have_accel_ = true;
 }
@@ -194,7 +194,50 @@ void SolidSph::step(double dt) {
   accelerations();
   for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
   time_ += dt;
+  if (tool_) apply_contact(dt);
   ++steps_;
+}
+
+void SolidSph::set_tool(std::shared_ptr<const ToolGeometry> tool, const Vec2& position, const Vec2& velocity,
+                        ContactOptions contact) {
+  if (!tool) throw InputError("tool", "null tool geometry");
+  if (!(contact.friction >= 0.0) || !(contact.kappa > 0.0 && contact.kappa <= 1.0))
+    throw InputError("contact", "mu >= 0 and 0 < kappa <= 1 required");
+  tool_ = std::move(tool);
+  tool_pos_ = position;
+  tool_vel_ = velocity;
+  contact_ = contact;
+}
+
+void SolidSph::apply_contact(double dt) {
+  tool_pos_ += dt * tool_vel_;
+  const double offset = contact_.offset_fraction * dx_;
+  const double c_heat = thermal_ ? th_.heat.specific_heat : 0.0;
+  Vec2 force = Vec2::Zero();
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    if (fixed_[i]) continue;
+    const SignedDistance sd = tool_->at(x_[i] - tool_pos_);
+    const double g = sd.distance - offset;
+    if (g >= 0.0) continue;
+    const Vec2 vrel = v_[i] - tool_vel_;
+    const double vn = vrel.dot(sd.normal);
+    const double target = std::max(vn, -contact_.kappa * g / dt);
+    const double jn = m_[i] * (target - vn);
+    if (jn <= 0.0) continue;
+    const Vec2 vt = vrel - vn * sd.normal;
+    Vec2 jt = -m_[i] * vt;
+    const double limit = contact_.friction * jn;
+    if (jt.norm() > limit) jt *= limit / jt.norm();
+    const Vec2 impulse = jn * sd.normal + jt;
+    v_[i] += impulse / m_[i];
+    force -= impulse / dt;
+    const Vec2 vrel_after = v_[i] - tool_vel_;
+    const double slip = (vrel_after - vrel_after.dot(sd.normal) * sd.normal).norm();
+    const double heat = contact_.heat_fraction * jt.norm() * slip;  // J/m over this step
+    friction_heat_ += heat;
+    if (thermal_ && !t_fixed_[i]) T_[i] += heat / (m_[i] * c_heat);
+  }
+  tool_force_ = force;
 }
 
 Vec2 SolidSph::momentum() const {

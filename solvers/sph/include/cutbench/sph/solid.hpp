@@ -19,6 +19,7 @@
 
 #include "cutbench/sph/heat.hpp"
 #include "cutbench/sph/johnson_cook.hpp"
+#include "cutbench/sph/tool.hpp"
 #include "cutbench/sph/neighbours.hpp"
 
 namespace cutbench::sph {
@@ -42,6 +43,7 @@ struct SolidOptions {
   double xsph = 0.5;                         // XSPH eps (0 = off)
   double cfl = 0.3;
   bool correct_velocity_gradient = false;    // multiply grad v by L_i^{-1} (renormalisation)
+  Vec2 body_force = Vec2::Zero();            // b / rho, m/s^2
 };
 
 // Heat equation on the moving particles (Eq. 4): conduction with V_j = m_j / rho_j, surface
@@ -77,6 +79,13 @@ public:
   // Switch on the heat equation; particles with fixed_temperature[i] keep their temperature.
   void enable_thermal(ThermalOptions options, std::vector<char> fixed_temperature);
   const SurfaceDetection& surface() const { return surface_; }
+
+  // Rigid tool translating at constant velocity; contact applied at the end of every step.
+  void set_tool(std::shared_ptr<const ToolGeometry> tool, const Vec2& position, const Vec2& velocity,
+                ContactOptions contact);
+  const Vec2& tool_position() const { return tool_pos_; }
+  const Vec2& tool_force() const { return tool_force_; }  // on the tool, N per metre of depth, last step
+  double friction_heat() const { return friction_heat_; }  // J per metre of depth, accumulated
   double plastic_heat() const { return plastic_heat_; }  // J per metre of depth, accumulated
   double boundary_heat_loss() const { return heat_lost_; }
 
@@ -107,7 +116,12 @@ private:
   std::vector<char> t_fixed_;
   SurfaceDetection surface_;
   FmfsLaplacian fmfs_;
-  double plastic_heat_ = 0.0, heat_lost_ = 0.0;
+  double plastic_heat_ = 0.0, heat_lost_ = 0.0, friction_heat_ = 0.0;
+  std::shared_ptr<const ToolGeometry> tool_;
+  Vec2 tool_pos_ = Vec2::Zero(), tool_vel_ = Vec2::Zero(), tool_force_ = Vec2::Zero();
+  ContactOptions contact_;
+
+  void apply_contact(double dt);
 
   void thermal_update(double dt, const std::vector<double>& plastic_dT);
 

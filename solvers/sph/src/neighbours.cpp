@@ -51,12 +51,10 @@ NeighbourList build_neighbours(const std::vector<Vec2>& x, double radius) {
   }
 
   const double r2 = radius * radius;
-  std::vector<std::vector<std::uint32_t>> rows(n);
-#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
-  for (std::size_t i = 0; i < n; ++i) {
+  // Two passes over the 3x3 cell blocks: count, then fill (no per-row allocations).
+  auto visit = [&](std::size_t i, auto&& emit) {
     long cx, cy;
     cell_of(x[i], cx, cy);
-    auto& row = rows[i];
     for (long dy = -1; dy <= 1; ++dy) {
       const long yy = cy + dy;
       if (yy < 0 || yy >= ny) continue;
@@ -66,17 +64,26 @@ NeighbourList build_neighbours(const std::vector<Vec2>& x, double radius) {
         const auto c = static_cast<std::size_t>(yy * nx + xx);
         for (std::size_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
           const std::uint32_t j = sorted[k];
-          if (j == i) continue;
-          if ((x[i] - x[j]).squaredNorm() < r2) row.push_back(j);
+          if (j != i && (x[i] - x[j]).squaredNorm() < r2) emit(j);
         }
       }
     }
-    std::sort(row.begin(), row.end());
+  };
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t count = 0;
+    visit(i, [&count](std::uint32_t) { ++count; });
+    nl.offset[i + 1] = count;
   }
-  for (std::size_t i = 0; i < n; ++i) nl.offset[i + 1] = nl.offset[i] + rows[i].size();
+  for (std::size_t i = 0; i < n; ++i) nl.offset[i + 1] += nl.offset[i];
   nl.index.resize(nl.offset[n]);
-  for (std::size_t i = 0; i < n; ++i)
-    std::copy(rows[i].begin(), rows[i].end(), nl.index.begin() + static_cast<std::ptrdiff_t>(nl.offset[i]));
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t pos = nl.offset[i];
+    visit(i, [&](std::uint32_t j) { nl.index[pos++] = j; });
+    std::sort(nl.index.begin() + static_cast<std::ptrdiff_t>(nl.offset[i]),
+              nl.index.begin() + static_cast<std::ptrdiff_t>(nl.offset[i + 1]));
+  }
   return nl;
 }
 

@@ -45,6 +45,7 @@ void SolidSph::enable_thermal(ThermalOptions options, std::vector<char> fixed_te
     throw InputError("fixed_temperature", "mask size differs from the particle count");
   if (!(options.heat.conductivity > 0.0) || !(options.heat.density > 0.0) || !(options.heat.specific_heat > 0.0))
     throw InputError("thermal", "k, rho and c_p must be positive");
+  if (options.conduction_interval < 1) throw InputError("conduction_interval", "must be >= 1");
   th_ = options;
   t_fixed_ = std::move(fixed_temperature);
   thermal_ = true;
@@ -55,6 +56,20 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   const std::size_t n = x_.size();
   std::vector<double> vol(n);
   for (std::size_t i = 0; i < n; ++i) vol[i] = m_[i] / rho_[i];
+  const double rc = th_.heat.density * th_.heat.specific_heat;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (t_fixed_[i]) continue;
+    T_[i] += plastic_dT[i];
+    plastic_heat_ += plastic_dT[i] * rc * vol[i];
+  }
+  th_dt_acc_ += dt;
+  ++th_steps_;
+  const double dt_limit = 0.1 * kernel_.h() * kernel_.h() / th_.heat.diffusivity();
+  if (th_steps_ < th_.conduction_interval && th_dt_acc_ + dt < dt_limit) return;
+  const int sub = std::max(1, static_cast<int>(std::ceil(th_dt_acc_ / dt_limit)));
+  const double dt_th = th_dt_acc_ / sub;
+  th_dt_acc_ = 0.0;
+  th_steps_ = 0;
   const ParticleView view{x_, vol, nl_, kernel_};
   surface_ = detect_free_surface(view, th_.surface);
   std::vector<char> use_fmfs, loss;
@@ -65,13 +80,11 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
     fm = &fmfs_;
   }
   std::vector<double> rate;
-  const double lost = heat_rates(view, T_, fm, use_fmfs, t_fixed_, loss, th_.heat, th_.boundary, rate);
-  heat_lost_ += dt * lost;
-  const double rc = th_.heat.density * th_.heat.specific_heat;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (t_fixed_[i]) continue;
-    T_[i] += dt * rate[i] + plastic_dT[i];
-    plastic_heat_ += plastic_dT[i] * rc * vol[i];
+  for (int k = 0; k < sub; ++k) {
+    const double lost = heat_rates(view, T_, fm, use_fmfs, t_fixed_, loss, th_.heat, th_.boundary, rate);
+    heat_lost_ += dt_th * lost;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!t_fixed_[i]) T_[i] += dt_th * rate[i];
   }
 }
 
@@ -89,8 +102,21 @@ double SolidSph::stable_time_step() const {
   return dt;
 }
 
+void SolidSph::update_neighbours() {
+  const double skin = opt_.neighbour_skin * kernel_.h();
+  bool rebuild = x_listed_.size() != x_.size() || skin <= 0.0;
+  if (!rebuild) {
+    const double lim2 = 0.25 * skin * skin;
+    for (std::size_t i = 0; i < x_.size() && !rebuild; ++i) rebuild = (x_[i] - x_listed_[i]).squaredNorm() > lim2;
+  }
+  if (!rebuild) return;
+  nl_ = build_neighbours(x_, kernel_.support() + std::max(skin, 0.0));
+  x_listed_ = x_;
+  ++builds_;
+}
+
 void SolidSph::accelerations() {
-  nl_ = build_neighbours(x_, kernel_.support());
+  update_neighbours();
   const std::size_t n = x_.size();
   const double K = mat_.bulk(), c0 = mat_.bulk_speed(), h = kernel_.h();
   std::vector<Stress3> sig_r2(n);   // sigma / rho^2
@@ -100,12 +126,17 @@ void SolidSph::accelerations() {
     const Stress3 sig = S_[i] - p * Stress3::Identity();
     sig_r2[i] = sig / (rho_[i] * rho_[i]);
     if (opt_.artificial_stress > 0.0) {
-      const Mat2 s2 = sig.topLeftCorner<2, 2>();
-      Eigen::SelfAdjointEigenSolver<Mat2> es(s2);
-      Vec2 r = Vec2::Zero();
-      for (int k = 0; k < 2; ++k)
-        if (es.eigenvalues()[k] > 0.0) r[k] = -opt_.artificial_stress * es.eigenvalues()[k] / (rho_[i] * rho_[i]);
-      art[i] = es.eigenvectors() * r.asDiagonal() * es.eigenvectors().transpose();
+      // principal stresses of the in-plane part, closed form
+      const double sxx = sig(0, 0), syy = sig(1, 1), sxy = sig(0, 1);
+      const double mean = 0.5 * (sxx + syy), rad = std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
+      const double s1 = mean + rad, s2 = mean - rad;
+      if (s1 > 0.0) {
+        const double theta = 0.5 * std::atan2(2.0 * sxy, sxx - syy);  // direction of s1
+        const Vec2 e1(std::cos(theta), std::sin(theta)), e2(-e1.y(), e1.x());
+        const double k = -opt_.artificial_stress / (rho_[i] * rho_[i]);
+        art[i] = (k * s1) * (e1 * e1.transpose());
+        if (s2 > 0.0) art[i] += (k * s2) * (e2 * e2.transpose());
+      }
     }
   }
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)

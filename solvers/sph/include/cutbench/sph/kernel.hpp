@@ -19,14 +19,32 @@ public:
 
   double h() const { return h_; }
   double support() const { return 2.0 * h_; }
-  double value(double r) const;
-  double dwdr(double r) const;  // dW/dr (<= 0)
+  double value(double r) const {
+    const double q = r * inv_h_;
+    if (q < 1.0) return sigma_ * (1.0 - 1.5 * q * q + 0.75 * q * q * q);
+    if (q < 2.0) {
+      const double t = 2.0 - q;
+      return sigma_ * 0.25 * t * t * t;
+    }
+    return 0.0;
+  }
+  double dwdr(double r) const {  // dW/dr (<= 0)
+    const double q = r * inv_h_;
+    if (q < 1.0) return sigma_inv_h_ * (-3.0 * q + 2.25 * q * q);
+    if (q < 2.0) {
+      const double t = 2.0 - q;
+      return -sigma_inv_h_ * 0.75 * t * t;
+    }
+    return 0.0;
+  }
   // grad_i W_ij for x_ij = x_i - x_j at distance r = |x_ij| > 0.
   Vec2 gradient(const Vec2& xij, double r) const { return (dwdr(r) / r) * xij; }
 
 private:
   double h_;
+  double inv_h_;
   double sigma_;  // 10 / (7 pi h^2)
+  double sigma_inv_h_;
 };
 
 }  // namespace cutbench::sph

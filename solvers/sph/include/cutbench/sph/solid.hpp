@@ -44,6 +44,9 @@ struct SolidOptions {
   double cfl = 0.3;
   bool correct_velocity_gradient = false;    // multiply grad v by L_i^{-1} (renormalisation)
   Vec2 body_force = Vec2::Zero();            // b / rho, m/s^2
+  // Verlet skin in units of h: neighbours are listed up to 2h + skin and the list is rebuilt
+  // when a particle has moved more than skin/2 since the last build (0 = rebuild every step).
+  double neighbour_skin = 0.3;
 };
 
 // Heat equation on the moving particles (Eq. 4): conduction with V_j = m_j / rho_j, surface
@@ -56,6 +59,10 @@ struct ThermalOptions {
   bool brookshaw_band = false;
   SurfaceOptions surface;
   double taylor_quinney = 0.9;  // chi
+  // Conduction, surface detection and FMFS geometry are updated every `conduction_interval`
+  // mechanical steps with the accumulated step (the thermal limit 0.1 h^2/alpha is ~1e4 times the
+  // mechanical CFL step in cutting); plastic and friction heat are added every step.
+  int conduction_interval = 10;
 };
 
 class SolidSph {
@@ -93,6 +100,7 @@ public:
   void step(double dt);
   double time() const { return time_; }
   std::size_t steps() const { return steps_; }
+  std::size_t neighbour_builds() const { return builds_; }
 
   Vec2 momentum() const;
   double kinetic_energy() const;
@@ -108,6 +116,8 @@ private:
   CubicSpline2D kernel_;
   double dx_, w_dx_;
   NeighbourList nl_;
+  std::vector<Vec2> x_listed_;  // positions at the last neighbour build
+  std::size_t builds_ = 0;
   double time_ = 0.0;
   std::size_t steps_ = 0;
   bool have_accel_ = false;
@@ -117,6 +127,8 @@ private:
   SurfaceDetection surface_;
   FmfsLaplacian fmfs_;
   double plastic_heat_ = 0.0, heat_lost_ = 0.0, friction_heat_ = 0.0;
+  double th_dt_acc_ = 0.0;
+  int th_steps_ = 0;
   std::shared_ptr<const ToolGeometry> tool_;
   Vec2 tool_pos_ = Vec2::Zero(), tool_vel_ = Vec2::Zero(), tool_force_ = Vec2::Zero();
   ContactOptions contact_;
@@ -126,6 +138,7 @@ private:
   void thermal_update(double dt, const std::vector<double>& plastic_dT);
 
   void accelerations();
+  void update_neighbours();
 };
 
 }  // namespace cutbench::sph

@@ -204,7 +204,7 @@ BOOST_AUTO_TEST_CASE(registered_heat_runner) {
   cutbench::SolverRegistry reg;
   register_solvers(reg);
   register_solvers(reg);
-  BOOST_TEST(reg.all().size() == 2u);
+  BOOST_TEST(reg.all().size() == 3u);
   const auto* spec = reg.find("sph_heat");
   BOOST_REQUIRE(spec);
   cutbench::Values v;

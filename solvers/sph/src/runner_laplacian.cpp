@@ -134,11 +134,13 @@ SolverSpec laplacian_spec() {
 
 }  // namespace
 
-SolverSpec heat_spec();  // runner_heat.cpp
+SolverSpec heat_spec();     // runner_heat.cpp
+SolverSpec cutting_spec();  // runner_cutting.cpp
 
 void register_solvers(SolverRegistry& registry) {
   if (!registry.find("sph_laplacian")) registry.add(laplacian_spec());
   if (!registry.find("sph_heat")) registry.add(heat_spec());
+  if (!registry.find("sph_cutting")) registry.add(cutting_spec());
 }
 
 }  // namespace cutbench::sph

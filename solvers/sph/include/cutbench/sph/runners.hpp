@@ -1,5 +1,8 @@
 #pragma once
 // Case runners of the SPH solver, registered with the framework as SolverSpecs.
+#include <cstdint>
+#include <vector>
+
 #include "cutbench/common/solver.hpp"
 
 namespace cutbench::sph {
@@ -19,5 +22,31 @@ struct LaplacianReconstruction {
 };
 LaplacianReconstruction laplacian_reconstruction(std::size_t n, double h_over_dx, double jitter_fraction,
                                                  std::uint64_t seed = 1);
+
+// Orthogonal cutting (paper Sec. 5.2, Table 1). SI units.
+struct CuttingSetup {
+  int particles_over_height = 41;
+  double length = 3e-3, height = 0.3e-3, uncut_thickness = 0.1e-3, cut_distance = 2e-3;
+  double speed = 318.5 / 60.0;  // m/s
+  double friction = 0.35;
+  double rake = 0.0, clearance = 7.0 * 3.14159265358979323846 / 180.0, edge_radius = 2.8e-6;
+  bool enhanced_thermal = true;
+  bool brookshaw_band = false;
+  int fixed_layers = 3;
+  double steady_from = 0.3;      // forces averaged over the cut after this fraction
+  double history_window = 1e-6;  // s, force-history averaging window
+};
+
+struct CuttingResult {
+  std::vector<double> t, cut, fc, ft;  // windowed means of the force on the tool, N/m
+  double fc_mean = 0.0, ft_mean = 0.0;
+  double rake_temperature = 0.0, T_max = 0.0, chip_height = 0.0;
+  double friction_heat = 0.0, plastic_heat = 0.0;  // J/m
+  double dx = 0.0;
+  std::size_t particles = 0, steps = 0;
+  Snapshot snapshot;  // final state: T, eps_p, surface flag
+};
+
+CuttingResult run_cutting(const CuttingSetup& setup, const ProgressFn& progress = nullptr);
 
 }  // namespace cutbench::sph

@@ -105,6 +105,24 @@ double heat_rates(const ParticleView& p, const std::vector<double>& T, const Fmf
   return total;
 }
 
+void cross_body_conduction(const std::vector<Vec2>& xa, const std::vector<double>& Va,
+                           const std::vector<double>& Ta, const HeatMaterial& ma, const std::vector<Vec2>& xb,
+                           const std::vector<double>& Vb, const std::vector<double>& Tb, const HeatMaterial& mb,
+                           const NeighbourList& cross, const CubicSpline2D& kernel, std::vector<double>& rate_a,
+                           std::vector<double>& rate_b) {
+  const double kab = 2.0 * ma.conductivity * mb.conductivity / (ma.conductivity + mb.conductivity);
+  const double rca = ma.density * ma.specific_heat, rcb = mb.density * mb.specific_heat;
+  for (std::size_t i = 0; i < xa.size(); ++i) {
+    for (std::size_t k = cross.begin(i); k < cross.end(i); ++k) {
+      const std::size_t j = cross.index[k];
+      const double r = (xa[i] - xb[j]).norm();
+      const double g = 2.0 * kab * (Ta[i] - Tb[j]) / r * kernel.dwdr(r);  // W/m^3 per unit volume pair
+      rate_a[i] += g * Vb[j] / rca;
+      rate_b[j] -= g * Va[i] / rcb;
+    }
+  }
+}
+
 std::vector<double> HeatConduction::rate(double& heat_loss_rate) {
   if (!ready_) throw InputError("heat", "setup() must be called before stepping");
   const ParticleView view{x_, V_, nl_, kernel_};

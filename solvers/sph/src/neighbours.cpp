@@ -87,6 +87,46 @@ NeighbourList build_neighbours(const std::vector<Vec2>& x, double radius) {
   return nl;
 }
 
+NeighbourList build_cross_neighbours(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double radius) {
+  // Simple and sufficient for the tool band: index b by cells, query every a.
+  NeighbourList nl;
+  nl.offset.assign(a.size() + 1, 0);
+  if (a.empty() || b.empty()) return nl;
+  if (!(radius > 0.0)) throw InputError("radius", "neighbour radius must be positive");
+  Vec2 lo = b[0], hi = b[0];
+  for (const auto& p : b) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const long nx = static_cast<long>(std::floor((hi.x() - lo.x()) / radius)) + 1;
+  const long ny = static_cast<long>(std::floor((hi.y() - lo.y()) / radius)) + 1;
+  if (static_cast<double>(nx) * static_cast<double>(ny) > 1e8)
+    throw NumericalError("sph cross neighbour search: bounding box too large");
+  std::vector<std::vector<std::uint32_t>> cells(static_cast<std::size_t>(nx * ny));
+  for (std::size_t j = 0; j < b.size(); ++j) {
+    const long cx = std::min(nx - 1, static_cast<long>(std::floor((b[j].x() - lo.x()) / radius)));
+    const long cy = std::min(ny - 1, static_cast<long>(std::floor((b[j].y() - lo.y()) / radius)));
+    cells[static_cast<std::size_t>(cy * nx + cx)].push_back(static_cast<std::uint32_t>(j));
+  }
+  const double r2 = radius * radius;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const long cx = static_cast<long>(std::floor((a[i].x() - lo.x()) / radius));
+    const long cy = static_cast<long>(std::floor((a[i].y() - lo.y()) / radius));
+    const std::size_t start = nl.index.size();
+    for (long yy = cy - 1; yy <= cy + 1; ++yy) {
+      if (yy < 0 || yy >= ny) continue;
+      for (long xx = cx - 1; xx <= cx + 1; ++xx) {
+        if (xx < 0 || xx >= nx) continue;
+        for (std::uint32_t j : cells[static_cast<std::size_t>(yy * nx + xx)])
+          if ((a[i] - b[j]).squaredNorm() < r2) nl.index.push_back(j);
+      }
+    }
+    std::sort(nl.index.begin() + static_cast<std::ptrdiff_t>(start), nl.index.end());
+    nl.offset[i + 1] = nl.index.size();
+  }
+  return nl;
+}
+
 NeighbourList build_neighbours_brute_force(const std::vector<Vec2>& x, double radius) {
   const std::size_t n = x.size();
   NeighbourList nl;

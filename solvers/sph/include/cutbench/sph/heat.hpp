@@ -62,6 +62,17 @@ void heat_masks(const NeighbourList& nl, const SurfaceDetection& surface, const 
 
 double surface_flux(const HeatBoundary& bc, double T);
 
+// Conduction between two bodies a and b (e.g. workpiece and tool) by pairwise Brookshaw terms with
+// the harmonic-mean conductivity k_ab = 2 k_a k_b / (k_a + k_b) (Cleary & Monaghan 1999):
+//   rho_a c_a dT_i/dt += sum_{j in b} 2 k_ab (T_i - T_j) / r_ij  dW/dr(r_ij) V_j
+// and the mirror term for b. Adds dT/dt into rate_a and rate_b (pairwise: energy-conserving).
+// `cross` holds the neighbours in b of every particle of a.
+void cross_body_conduction(const std::vector<Vec2>& xa, const std::vector<double>& Va,
+                           const std::vector<double>& Ta, const HeatMaterial& ma, const std::vector<Vec2>& xb,
+                           const std::vector<double>& Vb, const std::vector<double>& Tb, const HeatMaterial& mb,
+                           const NeighbourList& cross, const CubicSpline2D& kernel, std::vector<double>& rate_a,
+                           std::vector<double>& rate_b);
+
 class HeatConduction {
 public:
   using Field = std::function<double(const Vec2&, double)>;

@@ -23,6 +23,9 @@ struct NeighbourList {
 // Square cells of side `radius` over the bounding box of x; each particle scans the 3x3 block.
 NeighbourList build_neighbours(const std::vector<Vec2>& x, double radius);
 
+// Neighbours of each particle of `a` among the particles of `b` (rows for a, ids into b, sorted).
+NeighbourList build_cross_neighbours(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double radius);
+
 // O(n^2) reference used by the tests.
 NeighbourList build_neighbours_brute_force(const std::vector<Vec2>& x, double radius);
 

@@ -21,7 +21,8 @@ BOOST_AUTO_TEST_CASE(coarse_cut_smoke) {
   std::cout << "coarse cut (dx " << r.dx * 1e6 << " um, " << r.particles << " particles, " << r.steps
             << " steps): F_c " << r.fc_mean / 1e3 << " N/mm, F_t " << r.ft_mean / 1e3 << " N/mm, rake T "
             << r.rake_temperature << " K, T_max " << r.T_max << " K, chip height " << r.chip_height * 1e3
-            << " mm, plastic heat " << r.plastic_heat << " J/m, friction heat " << r.friction_heat << " J/m\n";
+            << " mm, plastic heat " << r.plastic_heat << " J/m, friction heat " << r.friction_heat
+            << " J/m, tool rake T " << r.tool_rake_temperature << " K, tool T_max " << r.tool_T_max << " K\n";
   BOOST_TEST(std::isfinite(r.fc_mean));
   BOOST_TEST(r.fc_mean / 1e3 > 50.0);   // N/mm; experiment 157.5
   BOOST_TEST(r.fc_mean / 1e3 < 500.0);
@@ -31,6 +32,8 @@ BOOST_AUTO_TEST_CASE(coarse_cut_smoke) {
   BOOST_TEST(r.plastic_heat > 0.0);
   BOOST_TEST(r.friction_heat > 0.0);
   BOOST_TEST(r.fc.size() >= 9u);
+  BOOST_TEST(r.tool_T_max > 300.0);  // heat reached the tool
+  BOOST_TEST(r.tool_T_max < r.T_max);
   BOOST_TEST(r.snapshot.fields.at("T").size() == r.particles);
 }
 

@@ -5,7 +5,9 @@
 // right of x = L with its lowest edge point at y = H - t_u and moves at -v_c (the mirror image of
 // the paper's Fig. 4, which clamps the right side). Forces on the tool per unit width; F_c along the
 // cut (positive against the tool motion), F_t normal to the machined surface (positive pushing the
-// tool up).
+// tool up). Tool particles (a band of tool_depth around the edge) conduct heat; the far ones are a
+// heat sink at T_inf.
+#include <algorithm>
 #include <cmath>
 
 #include "cutbench/common/errors.hpp"
@@ -48,6 +50,8 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   const double y_low = c.height - c.uncut_thickness;
   s.set_tool(cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height),
              Vec2(x_tool, y_low), Vec2(-c.speed, 0.0), contact);
+  if (c.tool_conduction)
+    s.set_tool_thermal(HeatMaterial{88.0, c.tool_density, 292.0}, std::max(c.tool_depth, 8.0 * dx));
 
   CuttingResult r;
   r.dx = dx;
@@ -105,6 +109,23 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
     }
   }
   r.rake_temperature = tn ? tsum / static_cast<double>(tn) : nan_value();
+  tsum = 0.0;
+  tn = 0;
+  r.tool_T_max = nan_value();
+  if (c.tool_conduction) {
+    r.tool_T_max = 0.0;
+    for (std::size_t k = 0; k < s.tool_particles().size(); ++k) {
+      const Vec2& p = s.tool_particles()[k];
+      const double tk = s.tool_temperature()[k];
+      r.tool_T_max = std::max(r.tool_T_max, tk);
+      const auto sd = tool->at(p);
+      if (sd.distance > -1.5 * dx && sd.normal.x() < -0.7 && p.y() > c.edge_radius && p.y() < 2.0 * c.uncut_thickness) {
+        tsum += tk;
+        ++tn;
+      }
+    }
+  }
+  r.tool_rake_temperature = tn ? tsum / static_cast<double>(tn) : nan_value();
   r.chip_height = chip_top - c.height;
   r.snapshot.time = s.time();
   for (std::size_t i = 0; i < x.size(); ++i) {
@@ -153,12 +174,17 @@ SolverSpec cutting_spec() {
       mk("enhanced_thermal", Dim::dimensionless, "1: FMFS + convection/radiation (paper); 0: reference", 1.0, 0.0, 1.0),
       mk("brookshaw_band", Dim::dimensionless, "1: Brookshaw on a 2h band at surfaces (energy-conserving variant)", 0.0, 0.0, 1.0),
       mk("fixed_layers", Dim::dimensionless, "clamped particle layers at the bottom and the far end", def.fixed_layers, 1, 20),
+      mk("tool_conduction", Dim::dimensionless, "1: tool particles conduct heat", 1.0, 0.0, 1.0),
+      mk("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5),
+      mk("tool_depth", Dim::length, "size of the discretised tool band around the edge", def.tool_depth, 1e-6, 1.0),
       mk("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),
   };
   s.scalars = {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
                {"F_t", Dim::force_per_width, "mean thrust force per unit width (steady part)"},
                {"rake_temperature", Dim::temperature, "mean temperature of particles on the rake face at the end"},
                {"T_max", Dim::temperature, "maximum temperature at the end"},
+               {"tool_rake_temperature", Dim::temperature, "mean temperature of tool particles on the rake face (up to 2 t_u)"},
+               {"tool_T_max", Dim::temperature, "maximum tool temperature"},
                {"chip_height", Dim::length, "highest particle above the original surface"},
                {"steps", Dim::dimensionless, "time steps"}};
   s.run = [](const Values& v, const ProgressFn& progress) {
@@ -179,6 +205,9 @@ SolverSpec cutting_spec() {
     c.brookshaw_band = v.at("brookshaw_band") != 0.0;
     c.fixed_layers = static_cast<int>(v.at("fixed_layers"));
     c.steady_from = v.at("steady_from");
+    c.tool_conduction = v.at("tool_conduction") != 0.0;
+    c.tool_density = v.at("tool_density");
+    c.tool_depth = v.at("tool_depth");
     c.history_window = c.cut_distance / c.speed / 200.0;
     const auto r = run_cutting(c, progress);
     RunOutput out;
@@ -191,11 +220,13 @@ SolverSpec cutting_spec() {
     out.tables.push_back(std::move(t));
     out.snapshots.push_back(r.snapshot);
     out.scalars = {{"F_c", r.fc_mean}, {"F_t", r.ft_mean}, {"rake_temperature", r.rake_temperature},
-                   {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)}};
+                   {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)},
+                   {"tool_rake_temperature", r.tool_rake_temperature}, {"tool_T_max", r.tool_T_max}};
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"T_max", "K"},
-                        {"chip_height", "m"}, {"steps", "1"}};
-    out.notes.push_back("Tool is rigid and adiabatic (no tool particles, no heat into the tool: not yet "
-                        "implemented); friction heat goes to the workpiece (eta = 1). Stabiliser "
+                        {"chip_height", "m"}, {"steps", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"}};
+    out.notes.push_back("Tool is rigid; its particles conduct heat (k 88 W/mK, c_p 292 J/kgK, density "
+                        "assumed) and exchange heat with the workpiece by harmonic-mean Brookshaw pairs; "
+                        "all friction heat goes to the workpiece particle (eta = 1). Stabiliser "
                         "parameters (artificial viscosity 1/1, artificial stress 0.3, XSPH 0.5) are "
                         "assumed, the paper does not list them.");
     return out;

@@ -51,6 +51,40 @@ void SolidSph::enable_thermal(ThermalOptions options, std::vector<char> fixed_te
   thermal_ = true;
 }
 
+void SolidSph::set_tool_thermal(HeatMaterial tool_heat, double depth) {
+  if (!tool_ || !thermal_) throw InputError("tool", "set_tool and enable_thermal must come first");
+  if (!(depth > 6.0 * dx_)) throw InputError("depth", "tool band must be deeper than 6 particle spacings");
+  tool_heat_ = tool_heat;
+  tool_x_.clear();
+  // lattice aligned with the lowest edge point (tool-frame origin of cutting_tool(...) is arbitrary:
+  // use the current world frame relative to tool_pos_)
+  const int m = static_cast<int>(std::ceil(depth / dx_)) + 1;
+  for (int j = -m; j <= m; ++j)
+    for (int i = -m; i <= m; ++i) {
+      const Vec2 p((i + 0.5) * dx_, (j + 0.5) * dx_);
+      if (p.norm() > depth) continue;
+      if (tool_->at(p).distance <= -0.45 * dx_) tool_x_.push_back(p);
+    }
+  const std::size_t n = tool_x_.size();
+  tool_V_.assign(n, dx_ * dx_);
+  tool_T_.assign(n, th_.boundary.T_ambient);
+  tool_fixed_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) tool_fixed_[i] = tool_x_[i].norm() > depth - 3.0 * dx_;
+  tool_nl_ = build_neighbours(tool_x_, kernel_.support());
+  const ParticleView view{tool_x_, tool_V_, tool_nl_, kernel_};
+  const SurfaceDetection s = detect_free_surface(view, th_.surface);
+  heat_masks(tool_nl_, s, tool_fixed_, th_.brookshaw_band, tool_use_fmfs_, tool_loss_);
+  tool_fmfs_.update(view);
+  tool_thermal_ = true;
+}
+
+double SolidSph::tool_heat_content() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < tool_x_.size(); ++i)
+    e += tool_heat_.density * tool_heat_.specific_heat * tool_V_[i] * (tool_T_[i] - th_.boundary.T_ambient);
+  return e;
+}
+
 void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) {
   // Called with nl_, x_ and rho_ of the start of the step.
   const std::size_t n = x_.size();
@@ -64,7 +98,9 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   }
   th_dt_acc_ += dt;
   ++th_steps_;
-  const double dt_limit = 0.1 * kernel_.h() * kernel_.h() / th_.heat.diffusivity();
+  const double alpha_max = tool_thermal_ ? std::max(th_.heat.diffusivity(), tool_heat_.diffusivity())
+                                         : th_.heat.diffusivity();
+  const double dt_limit = 0.1 * kernel_.h() * kernel_.h() / alpha_max;
   if (th_steps_ < th_.conduction_interval && th_dt_acc_ + dt < dt_limit) return;
   const int sub = std::max(1, static_cast<int>(std::ceil(th_dt_acc_ / dt_limit)));
   const double dt_th = th_dt_acc_ / sub;
@@ -79,10 +115,36 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
     fmfs_.update(view);
     fm = &fmfs_;
   }
-  std::vector<double> rate;
+  std::vector<double> rate, tool_rate;
+  std::vector<Vec2> tool_world;
+  NeighbourList cross;
+  std::vector<char> tool_loss = tool_loss_;
+  if (tool_thermal_) {
+    tool_world.resize(tool_x_.size());
+    for (std::size_t k = 0; k < tool_x_.size(); ++k) tool_world[k] = tool_x_[k] + tool_pos_;
+    cross = build_cross_neighbours(x_, tool_world, kernel_.support());
+    const double c2 = 2.25 * dx_ * dx_;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = cross.begin(i); k < cross.end(i); ++k)
+        if ((x_[i] - tool_world[cross.index[k]]).squaredNorm() < c2) {
+          loss[i] = 0;
+          tool_loss[cross.index[k]] = 0;
+        }
+  }
+  const ParticleView tool_view{tool_x_, tool_V_, tool_nl_, kernel_};
   for (int k = 0; k < sub; ++k) {
     const double lost = heat_rates(view, T_, fm, use_fmfs, t_fixed_, loss, th_.heat, th_.boundary, rate);
     heat_lost_ += dt_th * lost;
+    if (tool_thermal_) {
+      const double tool_lost =
+          heat_rates(tool_view, tool_T_, th_.scheme == HeatScheme::fmfs ? &tool_fmfs_ : nullptr, tool_use_fmfs_,
+                     tool_fixed_, tool_loss, tool_heat_, th_.boundary, tool_rate);
+      heat_lost_ += dt_th * tool_lost;
+      cross_body_conduction(x_, vol, T_, th_.heat, tool_world, tool_V_, tool_T_, tool_heat_, cross, kernel_, rate,
+                            tool_rate);
+      for (std::size_t i = 0; i < tool_T_.size(); ++i)
+        if (!tool_fixed_[i]) tool_T_[i] += dt_th * tool_rate[i];
+    }
     for (std::size_t i = 0; i < n; ++i)
       if (!t_fixed_[i]) T_[i] += dt_th * rate[i];
   }

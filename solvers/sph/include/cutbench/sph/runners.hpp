@@ -33,6 +33,9 @@ struct CuttingSetup {
   bool enhanced_thermal = true;
   bool brookshaw_band = false;
   int fixed_layers = 3;
+  bool tool_conduction = true;   // tool particles conduct heat (k 88, c_p 292 from Table 1)
+  double tool_density = 15000.0;  // kg/m^3, NOT in the paper (WC-Co assumed)
+  double tool_depth = 0.2e-3;     // tool band discretised around the edge
   double steady_from = 0.3;      // forces averaged over the cut after this fraction
   double history_window = 1e-6;  // s, force-history averaging window
 };
@@ -41,6 +44,7 @@ struct CuttingResult {
   std::vector<double> t, cut, fc, ft;  // windowed means of the force on the tool, N/m
   double fc_mean = 0.0, ft_mean = 0.0;
   double rake_temperature = 0.0, T_max = 0.0, chip_height = 0.0;
+  double tool_rake_temperature = 0.0, tool_T_max = 0.0;  // tool particles on the rake face / all
   double friction_heat = 0.0, plastic_heat = 0.0;  // J/m
   double dx = 0.0;
   std::size_t particles = 0, steps = 0;

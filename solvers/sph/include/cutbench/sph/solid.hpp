@@ -93,6 +93,16 @@ public:
   const Vec2& tool_position() const { return tool_pos_; }
   const Vec2& tool_force() const { return tool_force_; }  // on the tool, N per metre of depth, last step
   double friction_heat() const { return friction_heat_; }  // J per metre of depth, accumulated
+
+  // Discretise the tool for heat conduction (requires set_tool and enable_thermal): particles of
+  // spacing dx inside the tool within `depth` of its lowest edge point; those beyond depth - 3 dx
+  // are held at the ambient temperature (heat sink). Tool and workpiece are separate bodies for
+  // surface detection; they exchange heat through cross_body_conduction(); surface particles in
+  // contact (a particle of the other body within 1.5 dx) lose no heat to the air.
+  void set_tool_thermal(HeatMaterial tool_heat, double depth);
+  const std::vector<Vec2>& tool_particles() const { return tool_x_; }  // tool frame
+  const std::vector<double>& tool_temperature() const { return tool_T_; }
+  double tool_heat_content() const;  // sum rho c V (T - T_ambient) over the tool, J/m
   double plastic_heat() const { return plastic_heat_; }  // J per metre of depth, accumulated
   double boundary_heat_loss() const { return heat_lost_; }
 
@@ -132,6 +142,13 @@ private:
   std::shared_ptr<const ToolGeometry> tool_;
   Vec2 tool_pos_ = Vec2::Zero(), tool_vel_ = Vec2::Zero(), tool_force_ = Vec2::Zero();
   ContactOptions contact_;
+  bool tool_thermal_ = false;
+  HeatMaterial tool_heat_;
+  std::vector<Vec2> tool_x_;
+  std::vector<double> tool_V_, tool_T_;
+  std::vector<char> tool_fixed_, tool_use_fmfs_, tool_loss_;
+  NeighbourList tool_nl_;
+  FmfsLaplacian tool_fmfs_;
 
   void apply_contact(double dt);
 

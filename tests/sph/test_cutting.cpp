@@ -17,6 +17,7 @@ BOOST_AUTO_TEST_CASE(coarse_cut_smoke) {
   c.length = 0.6e-3;
   c.cut_distance = 0.12e-3;
   c.history_window = c.cut_distance / c.speed / 10.0;
+  c.snapshots = 3;
   const auto r = run_cutting(c);
   std::cout << "coarse cut (dx " << r.dx * 1e6 << " um, " << r.particles << " particles, " << r.steps
             << " steps): F_c " << r.fc_mean / 1e3 << " N/mm, F_t " << r.ft_mean / 1e3 << " N/mm, rake T "
@@ -35,6 +36,29 @@ BOOST_AUTO_TEST_CASE(coarse_cut_smoke) {
   BOOST_TEST(r.tool_T_max > 300.0);  // heat reached the tool
   BOOST_TEST(r.tool_T_max < r.T_max);
   BOOST_TEST(r.snapshot.fields.at("T").size() == r.particles);
+  BOOST_REQUIRE(r.snapshots.size() == 3u);
+  BOOST_TEST(r.snapshots[0].time < r.snapshots[1].time);
+  BOOST_TEST(r.snapshots[2].time == r.snapshot.time);
+  BOOST_TEST(r.tool_snapshot.fields.at("T").size() == r.tool_snapshot.x.size());
+}
+
+BOOST_AUTO_TEST_CASE(registered_cutting_runner) {
+  cutbench::SolverRegistry reg;
+  register_solvers(reg);
+  const auto* spec = reg.find("sph_cutting");
+  BOOST_REQUIRE(spec);
+  cutbench::Values v;
+  for (const auto& p : spec->params) v[p.name] = *p.default_value;
+  v["particles_over_height"] = 7.0;
+  v["length"] = 0.5e-3;
+  v["cut_distance"] = 0.05e-3;
+  v["snapshots"] = 2.0;
+  const auto out = spec->run(v, nullptr);
+  BOOST_TEST(out.tables.at(0).name == "forces");
+  BOOST_TEST(out.tables.at(0).rows() > 10u);
+  BOOST_TEST(out.snapshots.size() == 3u);  // two workpiece states + the tool
+  BOOST_TEST(std::isfinite(out.scalars.at("F_c")));
+  BOOST_TEST(out.scalars.at("steps") > 0.0);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

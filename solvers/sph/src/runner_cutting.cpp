@@ -61,6 +61,22 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   double acc_fc = 0.0, acc_ft = 0.0, acc_t = 0.0, t_next = window;
   double steady_fc = 0.0, steady_ft = 0.0, steady_t = 0.0;
   const double t_steady = c.steady_from * t_end;
+  auto take_snapshot = [&]() {
+    Snapshot snap;
+    snap.time = s.time();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      snap.x.push_back(s.positions()[i].x());
+      snap.y.push_back(s.positions()[i].y());
+    }
+    snap.add("T", "K", s.temperature());
+    snap.add("eps_p", "1", s.plastic_strain());
+    std::vector<double> surf(x.size(), 0.0);
+    for (std::size_t i = 0; i < x.size() && i < s.surface().surface.size(); ++i) surf[i] = s.surface().surface[i];
+    snap.add("surface", "1", surf);
+    return snap;
+  };
+  const int n_snap = std::max(1, c.snapshots);
+  int snap_taken = 0;
   while (s.time() < t_end) {
     const double dt = std::min(s.stable_time_step(), t_end - s.time());
     if (!(dt > 0.0)) break;
@@ -74,6 +90,10 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
       steady_fc += fc * dt;
       steady_ft += ft * dt;
       steady_t += dt;
+    }
+    if (snap_taken < n_snap - 1 && s.time() >= t_end * static_cast<double>(snap_taken + 1) / n_snap) {
+      r.snapshots.push_back(take_snapshot());
+      ++snap_taken;
     }
     if (s.time() >= t_next || s.time() >= t_end) {
       r.t.push_back(s.time());
@@ -127,16 +147,14 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   }
   r.tool_rake_temperature = tn ? tsum / static_cast<double>(tn) : nan_value();
   r.chip_height = chip_top - c.height;
-  r.snapshot.time = s.time();
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    r.snapshot.x.push_back(s.positions()[i].x());
-    r.snapshot.y.push_back(s.positions()[i].y());
+  r.snapshot = take_snapshot();
+  r.snapshots.push_back(r.snapshot);
+  r.tool_snapshot.time = s.time();
+  for (std::size_t k = 0; k < s.tool_particles().size(); ++k) {
+    r.tool_snapshot.x.push_back(s.tool_particles()[k].x() + s.tool_position().x());
+    r.tool_snapshot.y.push_back(s.tool_particles()[k].y() + s.tool_position().y());
   }
-  r.snapshot.add("T", "K", s.temperature());
-  r.snapshot.add("eps_p", "1", s.plastic_strain());
-  std::vector<double> surf(x.size(), 0.0);
-  for (std::size_t i = 0; i < x.size() && i < s.surface().surface.size(); ++i) surf[i] = s.surface().surface[i];
-  r.snapshot.add("surface", "1", surf);
+  r.tool_snapshot.add("T", "K", s.tool_temperature());
   r.friction_heat = s.friction_heat();
   r.plastic_heat = s.plastic_heat();
   return r;
@@ -177,6 +195,7 @@ SolverSpec cutting_spec() {
       mk("tool_conduction", Dim::dimensionless, "1: tool particles conduct heat", 1.0, 0.0, 1.0),
       mk("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5),
       mk("tool_depth", Dim::length, "size of the discretised tool band around the edge", def.tool_depth, 1e-6, 1.0),
+      mk("snapshots", Dim::dimensionless, "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
       mk("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),
   };
   s.scalars = {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
@@ -206,6 +225,7 @@ SolverSpec cutting_spec() {
     c.fixed_layers = static_cast<int>(v.at("fixed_layers"));
     c.steady_from = v.at("steady_from");
     c.tool_conduction = v.at("tool_conduction") != 0.0;
+    c.snapshots = static_cast<int>(v.at("snapshots"));
     c.tool_density = v.at("tool_density");
     c.tool_depth = v.at("tool_depth");
     c.history_window = c.cut_distance / c.speed / 200.0;
@@ -218,12 +238,15 @@ SolverSpec cutting_spec() {
     t.add("F_c", "N/m", r.fc);
     t.add("F_t", "N/m", r.ft);
     out.tables.push_back(std::move(t));
-    out.snapshots.push_back(r.snapshot);
+    out.snapshots = r.snapshots;
+    if (!r.tool_snapshot.x.empty()) out.snapshots.push_back(r.tool_snapshot);
     out.scalars = {{"F_c", r.fc_mean}, {"F_t", r.ft_mean}, {"rake_temperature", r.rake_temperature},
                    {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)},
                    {"tool_rake_temperature", r.tool_rake_temperature}, {"tool_T_max", r.tool_T_max}};
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"T_max", "K"},
                         {"chip_height", "m"}, {"steps", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"}};
+    out.notes.push_back("Snapshots: the workpiece states in time order, then (if the tool conducts) the "
+                        "final tool particles with their temperature.");
     out.notes.push_back("Tool is rigid; its particles conduct heat (k 88 W/mK, c_p 292 J/kgK, density "
                         "assumed) and exchange heat with the workpiece by harmonic-mean Brookshaw pairs; "
                         "all friction heat goes to the workpiece particle (eta = 1). Stabiliser "

@@ -38,6 +38,7 @@ struct CuttingSetup {
   double tool_depth = 0.2e-3;     // tool band discretised around the edge
   double steady_from = 0.3;      // forces averaged over the cut after this fraction
   double history_window = 1e-6;  // s, force-history averaging window
+  int snapshots = 1;              // equally spaced in time, the last at the end of the cut
 };
 
 struct CuttingResult {
@@ -48,7 +49,9 @@ struct CuttingResult {
   double friction_heat = 0.0, plastic_heat = 0.0;  // J/m
   double dx = 0.0;
   std::size_t particles = 0, steps = 0;
-  Snapshot snapshot;  // final state: T, eps_p, surface flag
+  Snapshot snapshot;               // final state: T, eps_p, surface flag
+  std::vector<Snapshot> snapshots;  // `snapshots` states, the last one equal to `snapshot`
+  Snapshot tool_snapshot;          // final tool particles (world frame) with T
 };
 
 CuttingResult run_cutting(const CuttingSetup& setup, const ProgressFn& progress = nullptr);

@@ -201,6 +201,8 @@ void SolidSph::accelerations() {
       }
     }
   }
+  pair_gw_.resize(nl_.index.size());
+  pair_w_.resize(nl_.index.size());
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     Vec2 acc = Vec2::Zero();
@@ -210,6 +212,9 @@ void SolidSph::accelerations() {
       const Vec2 xij = x_[i] - x_[j];
       const double r = xij.norm();
       const Vec2 gw = kernel_.gradient(xij, r);
+      const double wij = kernel_.value(r);
+      pair_gw_[k] = gw;
+      pair_w_[k] = wij;
       Mat2 t = si + sig_r2[j].topLeftCorner<2, 2>();
       const Vec2 vij = v_[i] - v_[j];
       const double vr = vij.dot(xij);
@@ -220,7 +225,7 @@ void SolidSph::accelerations() {
         t.diagonal().array() -= pi;
       }
       if (opt_.artificial_stress > 0.0) {
-        const double f = kernel_.value(r) / w_dx_;
+        const double f = wij / w_dx_;
         const double f2 = f * f;
         t += (f2 * f2) * (art[i] + art[j]);
       }
@@ -251,13 +256,11 @@ void SolidSph::step(double dt) {
     Vec2 xs = Vec2::Zero();
     for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
       const std::size_t j = nl_.index[k];
-      const Vec2 xij = x_[i] - x_[j];
-      const double r = xij.norm();
-      const Vec2 gw = kernel_.gradient(xij, r);
+      const Vec2& gw = pair_gw_[k];
       const double vj = m_[j] / rho_[j];
       gv.noalias() += vj * (v_[j] - v_[i]) * gw.transpose();
-      if (opt_.correct_velocity_gradient) lren.noalias() -= vj * xij * gw.transpose();
-      if (opt_.xsph > 0.0) xs += (m_[j] / (0.5 * (rho_[i] + rho_[j])) * kernel_.value(r)) * (v_[j] - v_[i]);
+      if (opt_.correct_velocity_gradient) lren.noalias() -= vj * (x_[i] - x_[j]) * gw.transpose();
+      if (opt_.xsph > 0.0) xs += (m_[j] / (0.5 * (rho_[i] + rho_[j])) * pair_w_[k]) * (v_[j] - v_[i]);
     }
     if (opt_.correct_velocity_gradient && std::abs(lren.determinant()) > 1e-6) gv = gv * lren.inverse();
     xsph[i] = opt_.xsph * xs;

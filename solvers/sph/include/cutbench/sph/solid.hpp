@@ -127,6 +127,10 @@ private:
   double dx_, w_dx_;
   NeighbourList nl_;
   std::vector<Vec2> x_listed_;  // positions at the last neighbour build
+  // Per-pair kernel gradient and value at the current positions (filled by accelerations(),
+  // reused by the rate loop of the next step: same positions).
+  std::vector<Vec2> pair_gw_;
+  std::vector<double> pair_w_;
   std::size_t builds_ = 0;
   double time_ = 0.0;
   std::size_t steps_ = 0;

@@ -79,7 +79,7 @@ void heat_masks(const NeighbourList& nl, const SurfaceDetection& surface, const 
 double heat_rates(const ParticleView& p, const std::vector<double>& T, const FmfsLaplacian* fmfs,
                   const std::vector<char>& use_fmfs, const std::vector<char>& fixed,
                   const std::vector<char>& loss, const HeatMaterial& mat, const HeatBoundary& bc,
-                  std::vector<double>& rate, std::vector<char>* fmfs_used) {
+                  std::vector<double>& rate, std::vector<char>* fmfs_used, double* fixed_inflow) {
   if (fmfs) {
     rate = fmfs->laplacian(p, T, &use_fmfs, fmfs_used);
   } else {
@@ -87,9 +87,10 @@ double heat_rates(const ParticleView& p, const std::vector<double>& T, const Fmf
     if (fmfs_used) fmfs_used->assign(p.x.size(), 0);
   }
   const double alpha = mat.diffusivity(), rc = mat.density * mat.specific_heat;
-  double total = 0.0;
+  double total = 0.0, inflow = 0.0;
   for (std::size_t i = 0; i < p.x.size(); ++i) {
     if (fixed[i]) {
+      inflow += mat.conductivity * rate[i] * p.volume[i];
       rate[i] = 0.0;
       continue;
     }
@@ -102,6 +103,7 @@ double heat_rates(const ParticleView& p, const std::vector<double>& T, const Fmf
     }
     rate[i] = d;
   }
+  if (fixed_inflow) *fixed_inflow = inflow;
   return total;
 }
 

@@ -157,6 +157,14 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   r.tool_snapshot.add("T", "K", s.tool_temperature());
   r.friction_heat = s.friction_heat();
   r.plastic_heat = s.plastic_heat();
+  r.stored_workpiece = s.workpiece_heat_content();
+  r.stored_tool = s.tool_heat_content();
+  r.heat_lost = s.boundary_heat_loss();
+  r.heat_sunk = s.heat_sunk();
+  const double generated = r.plastic_heat + r.friction_heat;
+  r.heat_imbalance =
+      generated > 0.0 ? (generated - r.stored_workpiece - r.stored_tool - r.heat_lost - r.heat_sunk) / generated
+                      : 0.0;
   return r;
 }
 
@@ -205,7 +213,9 @@ SolverSpec cutting_spec() {
                {"tool_rake_temperature", Dim::temperature, "mean temperature of tool particles on the rake face (up to 2 t_u)"},
                {"tool_T_max", Dim::temperature, "maximum tool temperature"},
                {"chip_height", Dim::length, "highest particle above the original surface"},
-               {"steps", Dim::dimensionless, "time steps"}};
+               {"steps", Dim::dimensionless, "time steps"},
+               {"heat_generated", Dim::force_per_width, "plastic + friction heat, J per metre of depth"},
+               {"heat_imbalance", Dim::dimensionless, "(generated - stored - lost - sunk) / generated"}};
   s.run = [](const Values& v, const ProgressFn& progress) {
     CuttingSetup c;
     const double n = v.at("particles_over_height");
@@ -242,9 +252,11 @@ SolverSpec cutting_spec() {
     if (!r.tool_snapshot.x.empty()) out.snapshots.push_back(r.tool_snapshot);
     out.scalars = {{"F_c", r.fc_mean}, {"F_t", r.ft_mean}, {"rake_temperature", r.rake_temperature},
                    {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)},
-                   {"tool_rake_temperature", r.tool_rake_temperature}, {"tool_T_max", r.tool_T_max}};
+                   {"tool_rake_temperature", r.tool_rake_temperature}, {"tool_T_max", r.tool_T_max},
+                   {"heat_generated", r.plastic_heat + r.friction_heat}, {"heat_imbalance", r.heat_imbalance}};
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"T_max", "K"},
-                        {"chip_height", "m"}, {"steps", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"}};
+                        {"chip_height", "m"}, {"steps", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
+                        {"heat_generated", "J/m"}, {"heat_imbalance", "1"}};
     out.notes.push_back("Snapshots: the workpiece states in time order, then (if the tool conducts) the "
                         "final tool particles with their temperature.");
     out.notes.push_back("Tool is rigid; its particles conduct heat (k 88 W/mK, c_p 292 J/kgK, density "

@@ -85,6 +85,15 @@ double SolidSph::tool_heat_content() const {
   return e;
 }
 
+double SolidSph::workpiece_heat_content() const {
+  if (!thermal_) return 0.0;
+  double e = 0.0;
+  const double rc = th_.heat.density * th_.heat.specific_heat;
+  for (std::size_t i = 0; i < x_.size(); ++i)
+    if (!t_fixed_[i]) e += rc * m_[i] / rho_[i] * (T_[i] - th_.boundary.T_ambient);
+  return e;
+}
+
 void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) {
   // Called with nl_, x_ and rho_ of the start of the step.
   const std::size_t n = x_.size();
@@ -133,15 +142,25 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   }
   const ParticleView tool_view{tool_x_, tool_V_, tool_nl_, kernel_};
   for (int k = 0; k < sub; ++k) {
-    const double lost = heat_rates(view, T_, fm, use_fmfs, t_fixed_, loss, th_.heat, th_.boundary, rate);
+    double sunk = 0.0, tool_sunk = 0.0;
+    const double lost = heat_rates(view, T_, fm, use_fmfs, t_fixed_, loss, th_.heat, th_.boundary, rate, nullptr, &sunk);
     heat_lost_ += dt_th * lost;
+    heat_sunk_ += dt_th * sunk;
     if (tool_thermal_) {
       const double tool_lost =
           heat_rates(tool_view, tool_T_, th_.scheme == HeatScheme::fmfs ? &tool_fmfs_ : nullptr, tool_use_fmfs_,
-                     tool_fixed_, tool_loss, tool_heat_, th_.boundary, tool_rate);
+                     tool_fixed_, tool_loss, tool_heat_, th_.boundary, tool_rate, nullptr, &tool_sunk);
       heat_lost_ += dt_th * tool_lost;
+      heat_sunk_ += dt_th * tool_sunk;
       cross_body_conduction(x_, vol, T_, th_.heat, tool_world, tool_V_, tool_T_, tool_heat_, cross, kernel_, rate,
                             tool_rate);
+      // cross-body heat into fixed particles (their rates were zeroed before the cross term)
+      const double rcw = th_.heat.density * th_.heat.specific_heat;
+      const double rct = tool_heat_.density * tool_heat_.specific_heat;
+      for (std::size_t i = 0; i < n; ++i)
+        if (t_fixed_[i]) heat_sunk_ += dt_th * rate[i] * rcw * vol[i];
+      for (std::size_t i = 0; i < tool_T_.size(); ++i)
+        if (tool_fixed_[i]) heat_sunk_ += dt_th * tool_rate[i] * rct * tool_V_[i];
       for (std::size_t i = 0; i < tool_T_.size(); ++i)
         if (!tool_fixed_[i]) tool_T_[i] += dt_th * tool_rate[i];
     }
@@ -331,7 +350,8 @@ void SolidSph::apply_contact(double dt) {
     const double slip = (vrel_after - vrel_after.dot(sd.normal) * sd.normal).norm();
     const double heat = contact_.heat_fraction * jt.norm() * slip;  // J/m over this step
     friction_heat_ += heat;
-    if (thermal_ && !t_fixed_[i]) T_[i] += heat / (m_[i] * c_heat);
+    // in the audit metric rho0 c V_i T_i this adds exactly `heat`
+    if (thermal_ && !t_fixed_[i]) T_[i] += heat * rho_[i] / (th_.heat.density * c_heat * m_[i]);
   }
   tool_force_ = force;
 }

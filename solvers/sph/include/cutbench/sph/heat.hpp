@@ -53,7 +53,10 @@ struct HeatOptions {
 double heat_rates(const ParticleView& p, const std::vector<double>& T, const FmfsLaplacian* fmfs,
                   const std::vector<char>& use_fmfs, const std::vector<char>& fixed,
                   const std::vector<char>& loss, const HeatMaterial& mat, const HeatBoundary& bc,
-                  std::vector<double>& rate, std::vector<char>* fmfs_used = nullptr);
+                  std::vector<double>& rate, std::vector<char>* fmfs_used = nullptr,
+                  double* fixed_inflow = nullptr);
+// fixed_inflow (if given) receives sum over fixed particles of k lap(T)_i V_i (W/m): the heat that
+// conduction would carry into the Dirichlet particles (their temperature is held).
 
 // Which particles use FMFS (not surface; with `band`, also not next to a surface particle) and
 // which lose heat (surface and not fixed).

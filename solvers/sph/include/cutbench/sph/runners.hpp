@@ -47,6 +47,9 @@ struct CuttingResult {
   double rake_temperature = 0.0, T_max = 0.0, chip_height = 0.0;
   double tool_rake_temperature = 0.0, tool_T_max = 0.0;  // tool particles on the rake face / all
   double friction_heat = 0.0, plastic_heat = 0.0;  // J/m
+  // heat audit (J/m): generated = plastic + friction; stored in workpiece and tool, lost to the air,
+  // sunk into the fixed-temperature particles; imbalance = (generated - stored - lost - sunk) / generated
+  double stored_workpiece = 0.0, stored_tool = 0.0, heat_lost = 0.0, heat_sunk = 0.0, heat_imbalance = 0.0;
   double dx = 0.0;
   std::size_t particles = 0, steps = 0;
   Snapshot snapshot;               // final state: T, eps_p, surface flag

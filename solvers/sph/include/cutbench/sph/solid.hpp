@@ -103,6 +103,10 @@ public:
   const std::vector<Vec2>& tool_particles() const { return tool_x_; }  // tool frame
   const std::vector<double>& tool_temperature() const { return tool_T_; }
   double tool_heat_content() const;  // sum rho c V (T - T_ambient) over the tool, J/m
+  // sum rho0 c V_i (T_i - T_ambient) over the free (not fixed-temperature) workpiece particles, J/m
+  double workpiece_heat_content() const;
+  // heat conducted into the fixed-temperature particles (workpiece and tool sinks), J/m
+  double heat_sunk() const { return heat_sunk_; }
   double plastic_heat() const { return plastic_heat_; }  // J per metre of depth, accumulated
   double boundary_heat_loss() const { return heat_lost_; }
 
@@ -141,7 +145,7 @@ private:
   SurfaceDetection surface_;
   FmfsLaplacian fmfs_;
   double plastic_heat_ = 0.0, heat_lost_ = 0.0, friction_heat_ = 0.0;
-  double th_dt_acc_ = 0.0;
+  double th_dt_acc_ = 0.0, heat_sunk_ = 0.0;
   int th_steps_ = 0;
   std::shared_ptr<const ToolGeometry> tool_;
   Vec2 tool_pos_ = Vec2::Zero(), tool_vel_ = Vec2::Zero(), tool_force_ = Vec2::Zero();

@@ -7,6 +7,15 @@
 #include "cutbench/common/errors.hpp"
 #include "parallel.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#else
+namespace {
+int omp_get_num_threads() { return 1; }
+int omp_get_thread_num() { return 0; }
+}  // namespace
+#endif
+
 namespace cutbench::sph {
 
 namespace {
@@ -192,6 +201,16 @@ void SolidSph::update_neighbours() {
   }
   if (!rebuild) return;
   nl_ = build_neighbours(x_, kernel_.support() + std::max(skin, 0.0));
+  // mirror_[k]: position of i in the row of j = index[k] (rows are sorted)
+  mirror_.resize(nl_.index.size());
+  for (std::size_t i = 0; i < x_.size(); ++i)
+    for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
+      const std::size_t j = nl_.index[k];
+      const auto first = nl_.index.begin() + static_cast<std::ptrdiff_t>(nl_.begin(j));
+      const auto last = nl_.index.begin() + static_cast<std::ptrdiff_t>(nl_.end(j));
+      mirror_[k] = static_cast<std::size_t>(std::lower_bound(first, last, static_cast<std::uint32_t>(i)) -
+                                            nl_.index.begin());
+    }
   x_listed_ = x_;
   ++builds_;
 }
@@ -222,36 +241,59 @@ void SolidSph::accelerations() {
   }
   pair_gw_.resize(nl_.index.size());
   pair_w_.resize(nl_.index.size());
-#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
-  for (std::size_t i = 0; i < n; ++i) {
-    Vec2 acc = Vec2::Zero();
-    const Mat2 si = sig_r2[i].topLeftCorner<2, 2>();
-    for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
-      const std::size_t j = nl_.index[k];
-      const Vec2 xij = x_[i] - x_[j];
-      const double r = xij.norm();
-      const Vec2 gw = kernel_.gradient(xij, r);
-      const double wij = kernel_.value(r);
-      pair_gw_[k] = gw;
-      pair_w_[k] = wij;
-      Mat2 t = si + sig_r2[j].topLeftCorner<2, 2>();
-      const Vec2 vij = v_[i] - v_[j];
-      const double vr = vij.dot(xij);
-      if (vr < 0.0 && (opt_.alpha_visc > 0.0 || opt_.beta_visc > 0.0)) {
-        const double mu = h * vr / (r * r + 0.01 * h * h);
-        const double rhobar = 0.5 * (rho_[i] + rho_[j]);
-        const double pi = (-opt_.alpha_visc * c0 * mu + opt_.beta_visc * mu * mu) / rhobar;
-        t.diagonal().array() -= pi;
-      }
-      if (opt_.artificial_stress > 0.0) {
-        const double f = wij / w_dx_;
-        const double f2 = f * f;
-        t += (f2 * f2) * (art[i] + art[j]);
-      }
-      acc.noalias() += m_[j] * (t * gw);
+  // Each pair (i < j) is evaluated once: acc_i += m_j T_ij gradW_ij, acc_j -= m_i T_ij gradW_ij
+  // (T_ij symmetric, gradW_ji = -gradW_ij). Threads accumulate into private buffers that are summed
+  // in thread order: deterministic for a fixed thread count.
+  auto pair_force = [&](std::size_t i, std::size_t k, Vec2& acc_i, Vec2& acc_j) {
+    const std::size_t j = nl_.index[k];
+    const Vec2 xij = x_[i] - x_[j];
+    const double r = xij.norm();
+    const Vec2 gw = kernel_.gradient(xij, r);
+    const double wij = kernel_.value(r);
+    pair_gw_[k] = gw;
+    pair_w_[k] = wij;
+    pair_gw_[mirror_[k]] = -gw;
+    pair_w_[mirror_[k]] = wij;
+    Mat2 t = sig_r2[i].topLeftCorner<2, 2>() + sig_r2[j].topLeftCorner<2, 2>();
+    const Vec2 vij = v_[i] - v_[j];
+    const double vr = vij.dot(xij);
+    if (vr < 0.0 && (opt_.alpha_visc > 0.0 || opt_.beta_visc > 0.0)) {
+      const double mu = h * vr / (r * r + 0.01 * h * h);
+      const double rhobar = 0.5 * (rho_[i] + rho_[j]);
+      const double pi = (-opt_.alpha_visc * c0 * mu + opt_.beta_visc * mu * mu) / rhobar;
+      t.diagonal().array() -= pi;
     }
-    a_[i] = fixed_[i] ? Vec2::Zero() : Vec2(acc + opt_.body_force);
+    if (opt_.artificial_stress > 0.0) {
+      const double f = wij / w_dx_;
+      const double f2 = f * f;
+      t += (f2 * f2) * (art[i] + art[j]);
+    }
+    const Vec2 tg = t * gw;
+    acc_i.noalias() += m_[j] * tg;
+    acc_j.noalias() -= m_[i] * tg;
+  };
+  std::vector<Vec2> acc(n, Vec2::Zero());
+  if (n < detail::kOmpMinParticles) {
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k)
+        if (nl_.index[k] > i) pair_force(i, k, acc[i], acc[nl_.index[k]]);
+  } else {
+    std::vector<std::vector<Vec2>> partial;
+#pragma omp parallel
+    {
+#pragma omp single
+      partial.assign(static_cast<std::size_t>(omp_get_num_threads()), std::vector<Vec2>());
+      auto& mine = partial[static_cast<std::size_t>(omp_get_thread_num())];
+      mine.assign(n, Vec2::Zero());
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k)
+          if (nl_.index[k] > i) pair_force(i, k, mine[i], mine[nl_.index[k]]);
+    }
+    for (const auto& part : partial)
+      for (std::size_t i = 0; i < n; ++i) acc[i] += part[i];
   }
+  for (std::size_t i = 0; i < n; ++i) a_[i] = fixed_[i] ? Vec2::Zero() : Vec2(acc[i] + opt_.body_force);
   have_accel_ = true;
 }
 

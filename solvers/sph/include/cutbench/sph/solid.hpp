@@ -135,6 +135,7 @@ private:
   // reused by the rate loop of the next step: same positions).
   std::vector<Vec2> pair_gw_;
   std::vector<double> pair_w_;
+  std::vector<std::size_t> mirror_;  // index of the reverse pair (j, i) for every listed pair (i, j)
   std::size_t builds_ = 0;
   double time_ = 0.0;
   std::size_t steps_ = 0;

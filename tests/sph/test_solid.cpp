@@ -134,3 +134,43 @@ BOOST_AUTO_TEST_CASE(adiabatic_plastic_heating) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(objectivity)
+
+// A pre-stressed block in rigid rotation (velocities reset to omega x (x - c) every step, D = 0):
+// the Jaumann rate must rotate the deviator with the body. After a quarter turn
+// diag(s, -s, 0) becomes diag(-s, s, 0).
+BOOST_AUTO_TEST_CASE(jaumann_rotates_stress_with_the_body) {
+  const int n = 9;
+  const double dx = 1e-4, s0 = 100e6;
+  auto x = rectangle_lattice(n, n, 0.0, (n - 1) * dx, 0.0, (n - 1) * dx);
+  SolidMaterial mat;
+  SolidOptions opt;
+  opt.correct_velocity_gradient = true;
+  opt.alpha_visc = opt.beta_visc = opt.artificial_stress = opt.xsph = 0.0;
+  SolidSph s(x, dx, mat, opt);
+  s.set_fixed(std::vector<char>(x.size(), 1));
+  Stress3 s_init = Stress3::Zero();
+  s_init(0, 0) = s0;
+  s_init(1, 1) = -s0;
+  for (auto& d : s.deviator()) d = s_init;
+  const Vec2 c(0.5 * (n - 1) * dx, 0.5 * (n - 1) * dx);
+  const double dt = s.stable_time_step();
+  const int steps = 4000;
+  const double omega = 0.5 * 3.14159265358979323846 / (steps * dt);
+  for (int k = 0; k < steps; ++k) {
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const Vec2 r = s.positions()[i] - c;
+      s.velocity()[i] = omega * Vec2(-r.y(), r.x());
+    }
+    s.step(dt);
+  }
+  const Stress3& d = s.deviator()[static_cast<std::size_t>(n * n / 2)];
+  std::cout << "Jaumann quarter turn: S_xx " << d(0, 0) / s0 << " s0, S_yy " << d(1, 1) / s0 << " s0, S_xy "
+            << d(0, 1) / s0 << " s0\n";
+  BOOST_TEST(d(0, 0) / s0 == -1.0, tt::tolerance(2e-2));
+  BOOST_TEST(d(1, 1) / s0 == 1.0, tt::tolerance(2e-2));
+  BOOST_TEST(std::abs(d(0, 1) / s0) < 2e-2);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -79,6 +79,7 @@ public:
   const std::vector<double>& plastic_strain() const { return eps_p_; }
   std::vector<double>& temperature() { return T_; }
   const std::vector<Stress3>& deviator() const { return S_; }
+  std::vector<Stress3>& deviator() { return S_; }  // e.g. to impose an initial stress
   std::vector<double> pressure() const;
 
   // Particles with prescribed (constant) velocity: their acceleration is discarded.

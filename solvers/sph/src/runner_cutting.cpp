@@ -13,6 +13,7 @@
 #include "cutbench/common/errors.hpp"
 #include "cutbench/sph/lattice.hpp"
 #include "cutbench/sph/runners.hpp"
+#include "specs.hpp"
 #include "cutbench/sph/solid.hpp"
 
 namespace cutbench::sph {
@@ -172,7 +173,7 @@ namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 }
 
-SolverSpec cutting_spec() {
+SolverSpec detail::cutting_spec() {
   SolverSpec s;
   s.name = "sph_cutting";
   s.description = "Thermo-mechanical SPH orthogonal cutting of Ti6Al4V (rigid tool, Coulomb friction); "

@@ -5,6 +5,7 @@
 #include "cutbench/common/errors.hpp"
 #include "cutbench/sph/heat.hpp"
 #include "cutbench/sph/runners.hpp"
+#include "specs.hpp"
 
 namespace cutbench::sph {
 
@@ -130,7 +131,7 @@ RunOutput run_cooling(const Values& v, const ProgressFn& progress) {
 
 }  // namespace
 
-SolverSpec heat_spec() {
+SolverSpec detail::heat_spec() {
   SolverSpec s;
   s.name = "sph_heat";
   s.description = "SPH transient heat conduction: decaying mode (problem 0) or cooling block (problem 1)";

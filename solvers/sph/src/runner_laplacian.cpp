@@ -5,6 +5,7 @@
 #include "cutbench/sph/lattice.hpp"
 #include "cutbench/sph/operators.hpp"
 #include "cutbench/sph/runners.hpp"
+#include "specs.hpp"
 
 namespace cutbench::sph {
 
@@ -56,9 +57,7 @@ LaplacianReconstruction laplacian_reconstruction(std::size_t n, double h_over_dx
   return out;
 }
 
-namespace {
-
-SolverSpec laplacian_spec() {
+SolverSpec detail::laplacian_spec() {
   SolverSpec s;
   s.name = "sph_laplacian";
   s.description = "Reconstruction of the Laplacian of x^2 + y^2 on a particle lattice over [-1,1]^2 "
@@ -132,15 +131,10 @@ SolverSpec laplacian_spec() {
   return s;
 }
 
-}  // namespace
-
-SolverSpec heat_spec();     // runner_heat.cpp
-SolverSpec cutting_spec();  // runner_cutting.cpp
-
 void register_solvers(SolverRegistry& registry) {
-  if (!registry.find("sph_laplacian")) registry.add(laplacian_spec());
-  if (!registry.find("sph_heat")) registry.add(heat_spec());
-  if (!registry.find("sph_cutting")) registry.add(cutting_spec());
+  if (!registry.find("sph_laplacian")) registry.add(detail::laplacian_spec());
+  if (!registry.find("sph_heat")) registry.add(detail::heat_spec());
+  if (!registry.find("sph_cutting")) registry.add(detail::cutting_spec());
 }
 
 }  // namespace cutbench::sph

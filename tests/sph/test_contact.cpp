@@ -42,6 +42,7 @@ BOOST_AUTO_TEST_CASE(cutting_tool_signed_distance) {
 // Block on a rigid plane, pressed by gravity g and sliding at v0: Coulomb friction decelerates the
 // centre of mass at mu g until it sticks at t = v0 / (mu g).
 BOOST_AUTO_TEST_CASE(block_sliding_with_coulomb_friction) {
+ for (auto model : {ContactModel::velocity, ContactModel::penalty}) {
   const int nx = 12, ny = 5;
   const double dx = 1e-4, mu = 0.3, v0 = 1.0, t_stop = 1e-4;
   const double g = v0 / (mu * t_stop);
@@ -53,6 +54,7 @@ BOOST_AUTO_TEST_CASE(block_sliding_with_coulomb_friction) {
   for (auto& v : s.velocity()) v = Vec2(v0, 0.0);
   ContactOptions c;
   c.friction = mu;
+  c.model = model;
   s.set_tool(std::make_shared<HalfPlane>(Vec2(0.0, 0.0), Vec2(0.0, 1.0)), Vec2::Zero(), Vec2::Zero(), c);
   auto com_v = [&]() { return s.momentum().x() / (s.mass()[0] * static_cast<double>(x.size())); };
   double vmid = 0.0, fy_sum = 0.0, fx_sum = 0.0;
@@ -70,7 +72,7 @@ BOOST_AUTO_TEST_CASE(block_sliding_with_coulomb_friction) {
   double ymin = 1.0;
   for (const auto& p : s.positions()) ymin = std::min(ymin, p.y());
   const double weight = s.mass()[0] * static_cast<double>(x.size()) * g;
-  std::cout << "sliding block: v(t_stop/2) = " << vmid << " (expected " << 0.5 * v0 << "), v(1.5 t_stop) = " << com_v()
+  std::cout << (model == ContactModel::penalty ? "penalty" : "velocity") << " contact, sliding block: v(t_stop/2) = " << vmid << " (expected " << 0.5 * v0 << "), v(1.5 t_stop) = " << com_v()
             << ", mean normal force " << -fy_sum / samples << " vs weight " << weight << ", mean friction ratio "
             << fx_sum / fy_sum << ", lowest particle " << ymin / dx << " dx, friction heat " << s.friction_heat()
             << " J/m\n";
@@ -82,6 +84,7 @@ BOOST_AUTO_TEST_CASE(block_sliding_with_coulomb_friction) {
   // friction work = kinetic energy lost while sliding (v0^2/2 per unit mass), eta = 1
   const double ke = 0.5 * s.mass()[0] * static_cast<double>(x.size()) * v0 * v0;
   BOOST_TEST(s.friction_heat() == ke, tt::tolerance(0.05));
+ }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -47,6 +47,8 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   s.enable_thermal(th, fixed);
   ContactOptions contact;
   contact.friction = c.friction;
+  contact.model = c.penalty_contact ? ContactModel::penalty : ContactModel::velocity;
+  contact.offset_fraction = c.contact_offset;
   const double x_tool = dx * static_cast<double>(nx - 1) + 0.5 * dx + c.edge_radius + 0.5 * dx;
   const double y_low = c.height - c.uncut_thickness;
   s.set_tool(cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height),
@@ -204,6 +206,8 @@ SolverSpec detail::cutting_spec() {
       mk("tool_conduction", Dim::dimensionless, "1: tool particles conduct heat", 1.0, 0.0, 1.0),
       mk("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5),
       mk("tool_depth", Dim::length, "size of the discretised tool band around the edge", def.tool_depth, 1e-6, 1.0),
+      mk("penalty_contact", Dim::dimensionless, "0: velocity-level contact; 1: penalty + stick-slip friction", 0.0, 0.0, 1.0),
+      mk("contact_offset", Dim::dimensionless, "contact surface offset in particle spacings", def.contact_offset, 0.0, 1.0),
       mk("snapshots", Dim::dimensionless, "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
       mk("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),
   };
@@ -237,6 +241,8 @@ SolverSpec detail::cutting_spec() {
     c.steady_from = v.at("steady_from");
     c.tool_conduction = v.at("tool_conduction") != 0.0;
     c.snapshots = static_cast<int>(v.at("snapshots"));
+    c.penalty_contact = v.at("penalty_contact") != 0.0;
+    c.contact_offset = v.at("contact_offset");
     c.tool_density = v.at("tool_density");
     c.tool_depth = v.at("tool_depth");
     c.history_window = c.cut_distance / c.speed / 200.0;

@@ -161,6 +161,9 @@ private:
   FmfsLaplacian tool_fmfs_;
 
   void apply_contact(double dt);
+  void penalty_contact(double dt);  // adds to a_ at the current positions (tool at time_ + dt)
+  std::vector<Vec2> friction_history_;
+  double last_dt_ = 0.0;
 
   void thermal_update(double dt, const std::vector<double>& plastic_dT);
 

@@ -54,10 +54,19 @@ std::unique_ptr<RoundedPolygon> cutting_tool(double rake, double clearance, doub
 // approach and pushes it out at -kappa g / dt; the tangential impulse sticks it or, beyond
 // mu times the normal impulse, lets it slip (Coulomb). Friction heat per particle:
 // eta |f_t| |v_slip| (Eq. 6 with v_rel the slip velocity after the impulse).
+//
+// Alternative (model = penalty): a force-level penalty contact, f_N = -alpha m g / dt^2 n for g < 0,
+// with the elastic-plastic (stick-slip) friction of the LS-DYNA theory manual: trial force
+// f* = f_t,old - alpha m v_t / dt, f_t = f* if |f*| <= mu |f_N| else mu |f_N| f*/|f*|; the
+// friction force is remembered per particle. Applied with the other forces (in a^{n+1}).
+enum class ContactModel { velocity, penalty };
+
 struct ContactOptions {
+  ContactModel model = ContactModel::velocity;
   double friction = 0.35;   // mu
   double heat_fraction = 1.0;  // eta
-  double kappa = 0.5;
+  double kappa = 0.5;            // velocity model: push-out rate
+  double alpha = 0.1;            // penalty model: stiffness scale
   double offset_fraction = 0.5;  // offset = fraction * dx (particles represent a cell of side dx)
 };
 

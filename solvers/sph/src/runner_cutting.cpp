@@ -206,7 +206,7 @@ SolverSpec detail::cutting_spec() {
       mk("tool_conduction", Dim::dimensionless, "1: tool particles conduct heat", 1.0, 0.0, 1.0),
       mk("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5),
       mk("tool_depth", Dim::length, "size of the discretised tool band around the edge", def.tool_depth, 1e-6, 1.0),
-      mk("penalty_contact", Dim::dimensionless, "0: velocity-level contact; 1: penalty + stick-slip friction", 0.0, 0.0, 1.0),
+      mk("penalty_contact", Dim::dimensionless, "1: penalty + stick-slip friction (default); 0: velocity-level contact", 1.0, 0.0, 1.0),
       mk("contact_offset", Dim::dimensionless, "contact surface offset in particle spacings", def.contact_offset, 0.0, 1.0),
       mk("snapshots", Dim::dimensionless, "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
       mk("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),

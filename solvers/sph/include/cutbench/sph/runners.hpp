@@ -39,7 +39,7 @@ struct CuttingSetup {
   double steady_from = 0.3;      // forces averaged over the cut after this fraction
   double history_window = 1e-6;  // s, force-history averaging window
   int snapshots = 1;              // equally spaced in time, the last at the end of the cut
-  bool penalty_contact = false;   // false: velocity-level contact; true: penalty + LS-DYNA friction
+  bool penalty_contact = true;    // true: penalty + stick-slip friction (default); false: velocity level
   double contact_offset = 0.5;    // contact surface offset in units of dx
 };
 

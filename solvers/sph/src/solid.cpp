@@ -345,7 +345,7 @@ void SolidSph::step(double dt) {
   S_.swap(s_new);
   // drift
   for (std::size_t i = 0; i < n; ++i) {
-    x_[i] += dt * (v_[i] + xsph[i]);
+    x_[i] += dt * (fixed_[i] ? v_[i] : Vec2(v_[i] + xsph[i]));  // prescribed particles follow v exactly
     if (!x_[i].allFinite()) throw NumericalError("sph solid: non-finite particle position");
   }
   accelerations();

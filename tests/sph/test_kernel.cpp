@@ -50,4 +50,26 @@ BOOST_AUTO_TEST_CASE(cell_list_matches_brute_force) {
   BOOST_TEST(empty.size() == 0u);
 }
 
+BOOST_AUTO_TEST_CASE(cross_neighbours_match_brute_force) {
+  auto a = rectangle_lattice(15, 9, 0.0, 1.0, 0.0, 0.6);
+  auto b = rectangle_lattice(11, 11, 0.7, 1.5, 0.3, 1.1);
+  jitter(a, 0.02, 1);
+  jitter(b, 0.02, 2);
+  const double radius = 0.2;
+  const auto nl = build_cross_neighbours(a, b, radius);
+  BOOST_REQUIRE(nl.size() == a.size());
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    std::vector<std::uint32_t> expect;
+    for (std::size_t j = 0; j < b.size(); ++j)
+      if ((a[i] - b[j]).squaredNorm() < radius * radius) expect.push_back(static_cast<std::uint32_t>(j));
+    const std::vector<std::uint32_t> got(nl.index.begin() + static_cast<std::ptrdiff_t>(nl.begin(i)),
+                                         nl.index.begin() + static_cast<std::ptrdiff_t>(nl.end(i)));
+    BOOST_TEST(got == expect, tt::per_element());
+    total += got.size();
+  }
+  BOOST_TEST(total > 0u);
+  BOOST_TEST(build_cross_neighbours(a, {}, radius).index.empty());
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -421,11 +421,18 @@ void SolidSph::penalty_contact(double dt) {
     const Vec2 vt = vrel - vrel.dot(sd.normal) * sd.normal;
     Vec2 ft = friction_history_[i] - (contact_.alpha * m_[i] / dt) * vt;
     const double fy = contact_.friction * fn.norm();
-    if (ft.norm() > fy) ft *= fy / ft.norm();
+    // Only the plastic (slip) part of the tangential motion dissipates: slip = (|f*| - f_y) / k_t
+    // with the tangential stiffness k_t = alpha m / dt^2; the elastic stick part is stored.
+    double heat = 0.0;
+    const double ftrial = ft.norm();
+    if (ftrial > fy) {
+      const double kt = contact_.alpha * m_[i] / (dt * dt);
+      heat = contact_.heat_fraction * fy * (ftrial - fy) / kt;  // J/m over this step
+      ft *= fy / ftrial;
+    }
     friction_history_[i] = ft;
     a_[i] += (fn + ft) / m_[i];
     force -= fn + ft;
-    const double heat = contact_.heat_fraction * ft.norm() * vt.norm() * dt;  // J/m over this step
     friction_heat_ += heat;
     if (thermal_ && !t_fixed_[i]) T_[i] += heat * rho_[i] / (th_.heat.density * c_heat * m_[i]);
   }

@@ -58,7 +58,8 @@ std::unique_ptr<RoundedPolygon> cutting_tool(double rake, double clearance, doub
 // Alternative (model = penalty): a force-level penalty contact, f_N = -alpha m g / dt^2 n for g < 0,
 // with the elastic-plastic (stick-slip) friction of the LS-DYNA theory manual: trial force
 // f* = f_t,old - alpha m v_t / dt, f_t = f* if |f*| <= mu |f_N| else mu |f_N| f*/|f*|; the
-// friction force is remembered per particle. Applied with the other forces (in a^{n+1}).
+// friction force is remembered per particle. Applied with the other forces (in a^{n+1}). Friction
+// heat = f_y x plastic slip, slip = (|f*| - f_y) / k_t, k_t = alpha m / dt^2 (elastic stick stores).
 enum class ContactModel { velocity, penalty };
 
 struct ContactOptions {

@@ -1,0 +1,45 @@
+#pragma once
+// Johnson-Cook flow stress (Afrasiabi et al. 2021, Eq. 9) and the radial-return mapping of J2
+// plasticity used by the SPH solid solver (plane strain: the stress carries a zz component).
+//
+//   sigma_y = [A + B eps_p^n] [1 + C ln(max(epsdot_p / epsdot_0, 1))] [1 - T*^m],
+//   T* = (T - T_r) / (T_m - T_r) clamped to [0, 1].
+//
+// The rate factor is floored at 1 (no softening below the reference rate), which is the usual
+// choice in SPH cutting codes; the paper is silent.
+#include <Eigen/Core>
+
+namespace cutbench::sph {
+
+struct JohnsonCook {
+  double A = 862e6, B = 331e6, C = 0.01, m = 0.8, n = 0.35;  // Ti6Al4V, paper Sec. 5.2
+  double T_ref = 300.0, T_melt = 1878.0;                      // K, paper Table 1
+  double eps_rate_ref = 1.0;                                 // 1/s
+
+  double flow_stress(double eps_p, double eps_rate_p, double T) const;
+  // d sigma_y / d eps_p at fixed rate, and d sigma_y / d (eps rate) at fixed strain.
+  double d_strain(double eps_p, double eps_rate_p, double T) const;
+  double d_rate(double eps_p, double eps_rate_p, double T) const;
+};
+
+// 3x3 symmetric stress with the out-of-plane component (plane strain).
+using Stress3 = Eigen::Matrix3d;
+
+struct ReturnResult {
+  Stress3 deviator;            // returned deviatoric stress
+  double delta_eps_p = 0.0;    // equivalent plastic strain increment
+  double flow_stress = 0.0;    // sigma_y at the end of the step (or at the start if elastic)
+  int iterations = 0;
+  bool plastic = false;
+};
+
+// Radial return: given the trial deviatoric stress, shear modulus G, plastic strain eps_p at the
+// start of the step, step dt and temperature T, find d >= 0 with
+//   q_trial - 3 G d = sigma_y(eps_p + d, d / dt, T),   q = sqrt(3/2 s:s),
+// by safeguarded Newton (bisection fallback), and scale the deviator by (1 - 3 G d / q_trial).
+ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial_deviator, double G, double eps_p,
+                           double dt, double T);
+
+double von_mises(const Stress3& deviator);
+
+}  // namespace cutbench::sph

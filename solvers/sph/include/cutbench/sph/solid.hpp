@@ -1,0 +1,174 @@
+#pragma once
+// Updated-Lagrangian solid SPH in 2D plane strain (Afrasiabi et al. 2021, Eqs. 1-3, 10, 11).
+//
+//   drho_i/dt = -rho_i sum_j (v_j - v_i) . gradW_ij V_j                                  (10)
+//   dv_i/dt   = sum_j m_j (sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I + f_ij^4 (R_i + R_j)) gradW_ij
+//   (grad v)_i = sum_j V_j (v_j - v_i) (x) gradW_ij        [optionally times L_i^{-1}]
+//   dS/dt = 2G (D - tr(D)/3 I) + Omega S - S Omega (Jaumann), p = K (rho/rho0 - 1), sigma = -p I + S
+//   J2 plasticity by radial return on S with Johnson-Cook flow stress (optional).
+//
+// Pi_ij: Monaghan artificial viscosity (alpha, beta, eta = 0.1 h). R_i: Monaghan/Gray artificial
+// stress, R = -eps sigma'_+ / rho^2 in the principal frame, f_ij = W(r_ij)/W(dx). XSPH position
+// smoothing: dx_i/dt = v_i + eps_x sum_j m_j/rhobar_ij (v_j - v_i) W_ij.
+//
+// Time integration, kick-drift-kick (second order): v^{n+1/2} = v^n + dt/2 a^n; rates of rho and S
+// from v^{n+1/2} on x^n; x^{n+1} = x^n + dt (v^{n+1/2} + XSPH); a^{n+1}; v^{n+1} = v^{n+1/2} + dt/2 a^{n+1}.
+// dt = cfl h / (c + max |v|), c = sqrt((K + 4G/3) / rho0).
+#include <cmath>
+#include <vector>
+
+#include "cutbench/sph/heat.hpp"
+#include "cutbench/sph/johnson_cook.hpp"
+#include "cutbench/sph/tool.hpp"
+#include "cutbench/sph/neighbours.hpp"
+
+namespace cutbench::sph {
+
+struct SolidMaterial {
+  double density = 4430.0;   // kg/m^3
+  double young = 113.8e9;    // Pa
+  double poisson = 0.35;
+  bool plastic = false;
+  JohnsonCook jc;
+
+  double shear() const { return young / (2.0 * (1.0 + poisson)); }
+  double bulk() const { return young / (3.0 * (1.0 - 2.0 * poisson)); }
+  double p_wave_speed() const { return std::sqrt((bulk() + 4.0 / 3.0 * shear()) / density); }
+  double bulk_speed() const { return std::sqrt(bulk() / density); }
+};
+
+struct SolidOptions {
+  double alpha_visc = 1.0, beta_visc = 1.0;  // Monaghan artificial viscosity
+  double artificial_stress = 0.3;            // eps of Gray et al. (0 = off)
+  double xsph = 0.5;                         // XSPH eps (0 = off)
+  double cfl = 0.3;
+  bool correct_velocity_gradient = false;    // multiply grad v by L_i^{-1} (renormalisation)
+  Vec2 body_force = Vec2::Zero();            // b / rho, m/s^2
+  // Verlet skin in units of h: neighbours are listed up to 2h + skin and the list is rebuilt
+  // when a particle has moved more than skin/2 since the last build (0 = rebuild every step).
+  double neighbour_skin = 0.3;
+};
+
+// Heat equation on the moving particles (Eq. 4): conduction with V_j = m_j / rho_j, surface
+// detection and FMFS geometry recomputed every step, plastic heating chi sigma_y d(eps_p) / (rho c_p)
+// per step (Eq. 5), convection and radiation on the detected surface, fixed-temperature particles.
+struct ThermalOptions {
+  HeatMaterial heat{7.3, 4430.0, 580.0};  // Ti6Al4V, paper Table 1
+  HeatBoundary boundary{50.0, 0.3, 300.0};
+  HeatScheme scheme = HeatScheme::fmfs;
+  bool brookshaw_band = false;
+  SurfaceOptions surface;
+  double taylor_quinney = 0.9;  // chi
+  // Conduction, surface detection and FMFS geometry are updated every `conduction_interval`
+  // mechanical steps with the accumulated step (the thermal limit 0.1 h^2/alpha is ~1e4 times the
+  // mechanical CFL step in cutting); plastic and friction heat are added every step.
+  int conduction_interval = 10;
+};
+
+class SolidSph {
+public:
+  // dx: initial particle spacing (volume dx^2, mass rho0 dx^2 unless set_masses), h = h_over_dx dx.
+  SolidSph(std::vector<Vec2> x, double dx, SolidMaterial material, SolidOptions options = {},
+           double h_over_dx = 1.5);
+
+  std::vector<Vec2>& velocity() { return v_; }
+  const std::vector<Vec2>& velocity() const { return v_; }
+  const std::vector<Vec2>& positions() const { return x_; }
+  const std::vector<double>& density() const { return rho_; }
+  const std::vector<double>& mass() const { return m_; }
+  const std::vector<double>& plastic_strain() const { return eps_p_; }
+  std::vector<double>& temperature() { return T_; }
+  const std::vector<Stress3>& deviator() const { return S_; }
+  std::vector<Stress3>& deviator() { return S_; }  // e.g. to impose an initial stress
+  std::vector<double> pressure() const;
+
+  // Particles with prescribed (constant) velocity: their acceleration is discarded.
+  void set_fixed(std::vector<char> fixed);
+  // Switch on the heat equation; particles with fixed_temperature[i] keep their temperature.
+  void enable_thermal(ThermalOptions options, std::vector<char> fixed_temperature);
+  const SurfaceDetection& surface() const { return surface_; }
+
+  // Rigid tool translating at constant velocity; contact applied at the end of every step.
+  void set_tool(std::shared_ptr<const ToolGeometry> tool, const Vec2& position, const Vec2& velocity,
+                ContactOptions contact);
+  const Vec2& tool_position() const { return tool_pos_; }
+  const Vec2& tool_force() const { return tool_force_; }  // on the tool, N per metre of depth, last step
+  double friction_heat() const { return friction_heat_; }  // J per metre of depth, accumulated
+
+  // Discretise the tool for heat conduction (requires set_tool and enable_thermal): particles of
+  // spacing dx inside the tool within `depth` of its lowest edge point; those beyond depth - 3 dx
+  // are held at the ambient temperature (heat sink). Tool and workpiece are separate bodies for
+  // surface detection; they exchange heat through cross_body_conduction(); surface particles in
+  // contact (a particle of the other body within 1.5 dx) lose no heat to the air.
+  void set_tool_thermal(HeatMaterial tool_heat, double depth);
+  const std::vector<Vec2>& tool_particles() const { return tool_x_; }  // tool frame
+  const std::vector<double>& tool_temperature() const { return tool_T_; }
+  double tool_heat_content() const;  // sum rho c V (T - T_ambient) over the tool, J/m
+  // sum rho0 c V_i (T_i - T_ambient) over the free (not fixed-temperature) workpiece particles, J/m
+  double workpiece_heat_content() const;
+  // heat conducted into the fixed-temperature particles (workpiece and tool sinks), J/m
+  double heat_sunk() const { return heat_sunk_; }
+  double plastic_heat() const { return plastic_heat_; }  // J per metre of depth, accumulated
+  double boundary_heat_loss() const { return heat_lost_; }
+
+  double stable_time_step() const;
+  void step(double dt);
+  double time() const { return time_; }
+  std::size_t steps() const { return steps_; }
+  std::size_t neighbour_builds() const { return builds_; }
+
+  Vec2 momentum() const;
+  double kinetic_energy() const;
+  double strain_energy() const;  // elastic: sum V (p^2/(2K) + S:S/(4G))
+
+private:
+  std::vector<Vec2> x_, v_, a_;
+  std::vector<double> m_, rho_, eps_p_, T_;
+  std::vector<Stress3> S_;
+  std::vector<char> fixed_;
+  SolidMaterial mat_;
+  SolidOptions opt_;
+  CubicSpline2D kernel_;
+  double dx_, w_dx_;
+  NeighbourList nl_;
+  std::vector<Vec2> x_listed_;  // positions at the last neighbour build
+  // Per-pair kernel gradient and value at the current positions (filled by accelerations(),
+  // reused by the rate loop of the next step: same positions).
+  std::vector<Vec2> pair_gw_;
+  std::vector<double> pair_w_;
+  std::vector<std::size_t> mirror_;  // index of the reverse pair (j, i) for every listed pair (i, j)
+  std::size_t builds_ = 0;
+  double time_ = 0.0;
+  std::size_t steps_ = 0;
+  bool have_accel_ = false;
+  bool thermal_ = false;
+  ThermalOptions th_;
+  std::vector<char> t_fixed_;
+  SurfaceDetection surface_;
+  FmfsLaplacian fmfs_;
+  double plastic_heat_ = 0.0, heat_lost_ = 0.0, friction_heat_ = 0.0;
+  double th_dt_acc_ = 0.0, heat_sunk_ = 0.0;
+  int th_steps_ = 0;
+  std::shared_ptr<const ToolGeometry> tool_;
+  Vec2 tool_pos_ = Vec2::Zero(), tool_vel_ = Vec2::Zero(), tool_force_ = Vec2::Zero();
+  ContactOptions contact_;
+  bool tool_thermal_ = false;
+  HeatMaterial tool_heat_;
+  std::vector<Vec2> tool_x_;
+  std::vector<double> tool_V_, tool_T_;
+  std::vector<char> tool_fixed_, tool_use_fmfs_, tool_loss_;
+  NeighbourList tool_nl_;
+  FmfsLaplacian tool_fmfs_;
+
+  void apply_contact(double dt);
+  void penalty_contact(double dt);  // adds to a_ at the current positions (tool at time_ + dt)
+  std::vector<Vec2> friction_history_;
+  double last_dt_ = 0.0;
+
+  void thermal_update(double dt, const std::vector<double>& plastic_dT);
+
+  void accelerations();
+  void update_neighbours();
+};
+
+}  // namespace cutbench::sph

@@ -1,0 +1,74 @@
+#include "cutbench/sph/johnson_cook.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cutbench/common/errors.hpp"
+
+namespace cutbench::sph {
+
+namespace {
+double thermal_factor(const JohnsonCook& jc, double T) {
+  const double ts = std::clamp((T - jc.T_ref) / (jc.T_melt - jc.T_ref), 0.0, 1.0);
+  return 1.0 - std::pow(ts, jc.m);
+}
+double rate_factor(const JohnsonCook& jc, double rate) {
+  const double r = rate / jc.eps_rate_ref;
+  return r > 1.0 ? 1.0 + jc.C * std::log(r) : 1.0;
+}
+double strain_factor(const JohnsonCook& jc, double eps) {
+  return jc.A + jc.B * (eps > 0.0 ? std::pow(eps, jc.n) : 0.0);
+}
+}  // namespace
+
+double JohnsonCook::flow_stress(double eps_p, double eps_rate_p, double T) const {
+  return strain_factor(*this, eps_p) * rate_factor(*this, eps_rate_p) * thermal_factor(*this, T);
+}
+
+double JohnsonCook::d_strain(double eps_p, double eps_rate_p, double T) const {
+  // n < 1: infinite slope at eps = 0; use a tiny floor so Newton stays finite.
+  const double e = std::max(eps_p, 1e-12);
+  return B * n * std::pow(e, n - 1.0) * rate_factor(*this, eps_rate_p) * thermal_factor(*this, T);
+}
+
+double JohnsonCook::d_rate(double eps_p, double eps_rate_p, double T) const {
+  if (eps_rate_p <= eps_rate_ref) return 0.0;
+  return strain_factor(*this, eps_p) * C / eps_rate_p * thermal_factor(*this, T);
+}
+
+double von_mises(const Stress3& s) { return std::sqrt(1.5 * (s.array() * s.array()).sum()); }
+
+ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G, double eps_p, double dt,
+                           double T) {
+  if (!(G > 0.0) || !(dt > 0.0)) throw InputError("radial_return", "G and dt must be positive");
+  ReturnResult res;
+  res.deviator = trial;
+  const double q = von_mises(trial);
+  const double y0 = jc.flow_stress(eps_p, 0.0, T);
+  res.flow_stress = y0;
+  if (q <= y0) return res;
+  res.plastic = true;
+  auto residual = [&](double d) { return q - 3.0 * G * d - jc.flow_stress(eps_p + d, d / dt, T); };
+  // Bracket: residual(0) > 0, residual(q / 3G) <= 0 since sigma_y >= 0.
+  double lo = 0.0, hi = q / (3.0 * G);
+  double d = std::min(hi, (q - y0) / (3.0 * G));  // perfectly plastic first guess
+  for (int it = 1; it <= 100; ++it) {
+    const double r = residual(d);
+    res.iterations = it;
+    if (r > 0.0) lo = d; else hi = d;
+    const double slope = -3.0 * G - jc.d_strain(eps_p + d, d / dt, T) - jc.d_rate(eps_p + d, d / dt, T) / dt;
+    double next = d - r / slope;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - d) <= 1e-14 * std::max(1e-12, next) || hi - lo <= 1e-15 * hi) {
+      d = next;
+      break;
+    }
+    d = next;
+  }
+  res.delta_eps_p = d;
+  res.flow_stress = jc.flow_stress(eps_p + d, d / dt, T);
+  res.deviator = trial * (1.0 - 3.0 * G * d / q);
+  return res;
+}
+
+}  // namespace cutbench::sph

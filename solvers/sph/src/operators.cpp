@@ -1,0 +1,183 @@
+#include "cutbench/sph/operators.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "cutbench/common/errors.hpp"
+#include "parallel.hpp"
+
+namespace cutbench::sph {
+
+namespace {
+void check_sizes(const ParticleView& p) {
+  if (p.volume.size() != p.x.size() || p.neighbours.size() != p.x.size())
+    throw InputError("particles", "positions, volumes and neighbour list differ in size");
+}
+}  // namespace
+
+std::vector<Mat2> renormalisation_matrices(const ParticleView& p) {
+  check_sizes(p);
+  const std::size_t n = p.x.size();
+  std::vector<Mat2> out(n);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) {
+    Mat2 l = Mat2::Zero();
+    for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
+      const std::size_t j = p.neighbours.index[k];
+      const Vec2 xij = p.x[i] - p.x[j];
+      const double r = xij.norm();
+      l.noalias() -= (xij * p.kernel.gradient(xij, r).transpose()) * p.volume[j];
+    }
+    out[i] = l;
+  }
+  return out;
+}
+
+double smallest_eigenvalue(const Mat2& m) {
+  const double a = m(0, 0), d = m(1, 1), b = 0.5 * (m(0, 1) + m(1, 0));
+  const double mean = 0.5 * (a + d);
+  const double rad = std::sqrt(0.25 * (a - d) * (a - d) + b * b);
+  return mean - rad;
+}
+
+double laplacian_brookshaw_at(const ParticleView& p, const std::vector<double>& f, std::size_t i) {
+  double s = 0.0;
+  for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
+    const std::size_t j = p.neighbours.index[k];
+    const double r = (p.x[i] - p.x[j]).norm();
+    // e_ij . grad W_ij = dW/dr
+    s += 2.0 * (f[i] - f[j]) / r * p.kernel.dwdr(r) * p.volume[j];
+  }
+  return s;
+}
+
+std::vector<double> laplacian_brookshaw(const ParticleView& p, const std::vector<double>& f) {
+  check_sizes(p);
+  if (f.size() != p.x.size()) throw InputError("field", "size differs from the particle count");
+  const std::size_t n = p.x.size();
+  std::vector<double> out(n);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) out[i] = laplacian_brookshaw_at(p, f, i);
+  return out;
+}
+
+void FmfsLaplacian::update(const ParticleView& p) {
+  check_sizes(p);
+  const std::size_t n = p.x.size();
+  corr_.assign(n, Mat2::Zero());
+  bhat_.assign(n, Mat2::Zero());
+  regular_.assign(n, 0);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) {
+    // b_kl = sum V (gradW)_k (x_ij)_l ; A_pqk ; C_lrs ; E_pqrs (EQUATIONS.md D1).
+    Mat2 b = Mat2::Zero();
+    double a[2][2][2] = {};
+    double c[2][2][2] = {};
+    double e[2][2][2][2] = {};
+    for (std::size_t kk = p.neighbours.begin(i); kk < p.neighbours.end(i); ++kk) {
+      const std::size_t j = p.neighbours.index[kk];
+      const Vec2 xij = p.x[i] - p.x[j];
+      const double r = xij.norm();
+      const Vec2 eij = xij / r;
+      const Vec2 gw = p.kernel.gradient(xij, r) * p.volume[j];  // V_j grad W_ij
+      b.noalias() += gw * xij.transpose();
+      for (int q1 = 0; q1 < 2; ++q1)
+        for (int q2 = 0; q2 < 2; ++q2)
+          for (int q3 = 0; q3 < 2; ++q3) {
+            a[q1][q2][q3] += eij[q1] * eij[q2] * gw[q3];
+            c[q1][q2][q3] += xij[q1] * xij[q2] * gw[q3];
+            for (int q4 = 0; q4 < 2; ++q4) e[q1][q2][q3][q4] += eij[q1] * eij[q2] * xij[q3] * gw[q4];
+          }
+    }
+    const Mat2 minus_b = -b;
+    const double det_b = minus_b.determinant();
+    if (!(std::abs(det_b) > det_tol_)) continue;
+    const Mat2 bb = minus_b.inverse();  // B = -b^{-1}
+    corr_[i] = bb;
+    // F_pqrs = E_pqrs + sum_kl A_pqk B_kl C_lrs
+    double fmat[2][2][2][2];
+    for (int q1 = 0; q1 < 2; ++q1)
+      for (int q2 = 0; q2 < 2; ++q2)
+        for (int r = 0; r < 2; ++r)
+          for (int s = 0; s < 2; ++s) {
+            double d = 0.0;
+            for (int k = 0; k < 2; ++k)
+              for (int l = 0; l < 2; ++l) d += a[q1][q2][k] * bb(k, l) * c[l][r][s];
+            fmat[q1][q2][r][s] = e[q1][q2][r][s] + d;
+          }
+    // Unknowns (Bh11, Bh12, Bh22); equations for (r,s) = (1,1), (1,2) symmetrised, (2,2).
+    Eigen::Matrix3d m;
+    Eigen::Vector3d rhs(-1.0, 0.0, -1.0);
+    const int rs[3][2] = {{0, 0}, {0, 1}, {1, 1}};
+    for (int row = 0; row < 3; ++row) {
+      const int r = rs[row][0], s = rs[row][1];
+      auto fs = [&](int q1, int q2) { return 0.5 * (fmat[q1][q2][r][s] + fmat[q1][q2][s][r]); };
+      m(row, 0) = fs(0, 0);
+      m(row, 1) = fs(0, 1) + fs(1, 0);
+      m(row, 2) = fs(1, 1);
+    }
+    const double det_m = m.determinant();
+    if (!(std::abs(det_m) > det_tol_)) continue;
+    const Eigen::Vector3d sol = m.partialPivLu().solve(rhs);
+    if (!sol.allFinite()) continue;
+    bhat_[i] << sol[0], sol[1], sol[1], sol[2];
+    regular_[i] = 1;
+  }
+}
+
+Vec2 FmfsLaplacian::gradient_at(const ParticleView& p, const std::vector<double>& f,
+                                std::size_t i) const {
+  Vec2 g = Vec2::Zero();
+  for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
+    const std::size_t j = p.neighbours.index[k];
+    const Vec2 xij = p.x[i] - p.x[j];
+    g.noalias() += ((f[j] - f[i]) * p.volume[j]) * p.kernel.gradient(xij, xij.norm());
+  }
+  return corr_[i] * g;
+}
+
+std::vector<Vec2> FmfsLaplacian::gradient(const ParticleView& p, const std::vector<double>& f) const {
+  check_sizes(p);
+  if (corr_.size() != p.x.size()) throw InputError("fmfs", "update() not called for this configuration");
+  const std::size_t n = p.x.size();
+  std::vector<Vec2> out(n);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) out[i] = gradient_at(p, f, i);
+  return out;
+}
+
+double FmfsLaplacian::laplacian_at(const ParticleView& p, const std::vector<double>& f,
+                                   std::size_t i) const {
+  const Vec2 g = gradient_at(p, f, i);
+  Mat2 t = Mat2::Zero();
+  for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
+    const std::size_t j = p.neighbours.index[k];
+    const Vec2 xij = p.x[i] - p.x[j];
+    const double r = xij.norm();
+    const Vec2 eij = xij / r;
+    const double bracket = (f[i] - f[j]) / r - eij.dot(g);
+    t.noalias() += (2.0 * p.volume[j] * bracket) * (eij * p.kernel.gradient(xij, r).transpose());
+  }
+  return bhat_[i].cwiseProduct(t).sum();
+}
+
+std::vector<double> FmfsLaplacian::laplacian(const ParticleView& p, const std::vector<double>& f,
+                                             const std::vector<char>* use_fmfs,
+                                             std::vector<char>* fmfs_used) const {
+  check_sizes(p);
+  if (f.size() != p.x.size()) throw InputError("field", "size differs from the particle count");
+  if (regular_.size() != p.x.size()) throw InputError("fmfs", "update() not called for this configuration");
+  if (use_fmfs && use_fmfs->size() != p.x.size()) throw InputError("use_fmfs", "size differs from the particle count");
+  const std::size_t n = p.x.size();
+  std::vector<double> out(n);
+  if (fmfs_used) fmfs_used->assign(n, 0);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool fm = regular_[i] && (!use_fmfs || (*use_fmfs)[i]);
+    out[i] = fm ? laplacian_at(p, f, i) : laplacian_brookshaw_at(p, f, i);
+    if (fmfs_used) (*fmfs_used)[i] = fm ? 1 : 0;
+  }
+  return out;
+}
+
+}  // namespace cutbench::sph

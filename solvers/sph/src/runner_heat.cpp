@@ -1,0 +1,172 @@
+// sph_heat: verification runs of the SPH heat solver (decaying mode with Dirichlet layers;
+// cooling block with convection and radiation) for the framework.
+#include <cmath>
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/sph/heat.hpp"
+#include "cutbench/sph/runners.hpp"
+#include "specs.hpp"
+
+namespace cutbench::sph {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+struct Block {
+  std::vector<Vec2> x;
+  std::vector<double> v;
+  std::vector<char> fixed;
+};
+
+Block block(double lx, double ly, double dx, int layers) {
+  Block b;
+  const int nx = static_cast<int>(std::lround(lx / dx)), ny = static_cast<int>(std::lround(ly / dx));
+  for (int j = -layers; j < ny + layers; ++j)
+    for (int i = -layers; i < nx + layers; ++i) {
+      b.x.emplace_back((i + 0.5) * dx, (j + 0.5) * dx);
+      b.v.push_back(dx * dx);
+      b.fixed.push_back(i < 0 || i >= nx || j < 0 || j >= ny);
+    }
+  return b;
+}
+
+HeatOptions options_for(double scheme) {
+  HeatOptions o;
+  const int s = static_cast<int>(scheme);
+  o.scheme = s == 1 ? HeatScheme::brookshaw : HeatScheme::fmfs;
+  o.brookshaw_band = s == 2;
+  return o;
+}
+
+RunOutput run_mode(const Values& v, const ProgressFn& progress) {
+  const int n = static_cast<int>(v.at("n"));
+  const double alpha = 1.0, t_end = v.at("t_end");
+  const auto exact = [&](const Vec2& p, double t) {
+    return std::sin(kPi * p.x()) * std::sin(kPi * p.y()) * std::exp(-2.0 * kPi * kPi * alpha * t);
+  };
+  const double dx = 1.0 / n;
+  auto b = block(1.0, 1.0, dx, 3);
+  HeatConduction s(b.x, b.v, 1.5 * dx, HeatMaterial{1.0, 1.0, 1.0}, HeatBoundary{}, options_for(v.at("scheme")));
+  s.set_dirichlet(b.fixed, exact);
+  s.set_temperature(exact);
+  s.setup();
+  const double dt = s.stable_time_step();
+  while (s.time() < t_end * (1.0 - 1e-12)) {
+    s.step(std::min(dt, t_end - s.time()));
+    if (progress && s.steps() % 200 == 0) progress(s.time() / t_end, "t = " + std::to_string(s.time()));
+  }
+  const double scale = std::exp(-2.0 * kPi * kPi * alpha * t_end);
+  double err = 0.0;
+  Table prof;
+  prof.name = "profile";
+  std::vector<double> xs, ts, te;
+  const int mid = n / 2;  // row just above y = 0.5
+  for (std::size_t i = 0; i < b.x.size(); ++i) {
+    if (b.fixed[i]) continue;
+    const double ex = exact(b.x[i], s.time());
+    err = std::max(err, std::abs(s.temperature()[i] - ex));
+    if (static_cast<int>(std::floor(b.x[i].y() / dx)) == mid) {
+      xs.push_back(b.x[i].x());
+      ts.push_back(s.temperature()[i]);
+      te.push_back(ex);
+    }
+  }
+  prof.add("x", "m", xs);
+  prof.add("T", "K", ts);
+  prof.add("T_exact", "K", te);
+  RunOutput out;
+  out.tables.push_back(std::move(prof));
+  out.scalars["max_rel_error"] = err / scale;
+  out.scalars["steps"] = static_cast<double>(s.steps());
+  out.scalar_units = {{"max_rel_error", "1"}, {"steps", "1"}};
+  out.notes.push_back("Unit square, k = rho = c_p = 1, T = sin(pi x) sin(pi y) exp(-2 pi^2 t); three "
+                      "Dirichlet layers hold the exact solution; error relative to the mode amplitude.");
+  return out;
+}
+
+RunOutput run_cooling(const Values& v, const ProgressFn& progress) {
+  const int n = static_cast<int>(v.at("n"));
+  const double L = 2e-3, dx = L / n, t_end = v.at("t_end");
+  auto b = block(L, L, dx, 0);
+  const HeatMaterial mat{v.at("conductivity"), v.at("density"), v.at("specific_heat")};
+  const HeatBoundary bc{v.at("h_conv"), v.at("emissivity"), v.at("T_ambient")};
+  HeatConduction s(b.x, b.v, 1.5 * dx, mat, bc, options_for(v.at("scheme")));
+  s.set_temperature(std::vector<double>(b.x.size(), v.at("T_initial")));
+  s.setup();
+  const double e0 = s.thermal_energy(), dt = s.stable_time_step();
+  Table hist;
+  hist.name = "history";
+  std::vector<double> t, lost, flux, tmean;
+  const double rc = mat.density * mat.specific_heat, area = L * L;
+  auto record = [&]() {
+    t.push_back(s.time());
+    lost.push_back(e0 - s.thermal_energy());
+    flux.push_back(s.boundary_heat_loss());
+    tmean.push_back(s.thermal_energy() / (rc * area));
+  };
+  record();
+  const std::size_t every = std::max<std::size_t>(1, static_cast<std::size_t>(t_end / dt / 100.0));
+  while (s.time() < t_end * (1.0 - 1e-12)) {
+    s.step(std::min(dt, t_end - s.time()));
+    if (s.steps() % every == 0) {
+      record();
+      if (progress) progress(s.time() / t_end, "t = " + std::to_string(s.time()) + " s");
+    }
+  }
+  record();
+  hist.add("t", "s", t);
+  hist.add("energy_lost", "J/m", lost);
+  hist.add("flux_integral", "J/m", flux);
+  hist.add("T_mean", "K", tmean);
+  RunOutput out;
+  out.tables.push_back(std::move(hist));
+  out.scalars["energy_lost"] = lost.back();
+  out.scalars["flux_integral"] = flux.back();
+  out.scalars["energy_imbalance"] = (lost.back() - flux.back()) / lost.back();
+  out.scalar_units = {{"energy_lost", "J/m"}, {"flux_integral", "J/m"}, {"energy_imbalance", "1"}};
+  out.notes.push_back("2 mm square block, uniform initial temperature, convection + radiation on the "
+                      "detected surface with a surface length sqrt(V_i) per particle.");
+  return out;
+}
+
+}  // namespace
+
+SolverSpec detail::heat_spec() {
+  SolverSpec s;
+  s.name = "sph_heat";
+  s.description = "SPH transient heat conduction: decaying mode (problem 0) or cooling block (problem 1)";
+  s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Eqs. 4, 7, 8, 12, 13; Sec. 4.2";
+  auto mk = [](const char* name, Dim d, const char* desc, double def, double lo, double hi) {
+    auto p = param(name, d, desc);
+    p.default_value = def;
+    p.min = lo;
+    p.max = hi;
+    return p;
+  };
+  s.params = {
+      mk("problem", Dim::dimensionless, "0: 2D decaying mode; 1: cooling block", 0.0, 0.0, 1.0),
+      mk("n", Dim::dimensionless, "particles per side", 20.0, 4.0, 400.0),
+      mk("scheme", Dim::dimensionless, "0: FMFS inside / Brookshaw on surface (paper); 1: Brookshaw; 2: Brookshaw band 2h", 0.0, 0.0, 2.0),
+      mk("t_end", Dim::time, "end time", 0.02, 0.0, 1e6),
+      mk("conductivity", Dim::conductivity, "k (problem 1)", 50.0, 1e-6, 1e6),
+      mk("density", Dim::density, "rho (problem 1)", 4430.0, 1e-6, 1e6),
+      mk("specific_heat", Dim::specific_heat, "c_p (problem 1)", 560.0, 1e-6, 1e7),
+      mk("h_conv", Dim::heat_transfer, "convection coefficient (problem 1)", 50.0, 0.0, 1e7),
+      mk("emissivity", Dim::dimensionless, "emissivity (problem 1)", 0.3, 0.0, 1.0),
+      mk("T_ambient", Dim::temperature, "ambient temperature (problem 1)", 300.0, 0.0, 1e4),
+      mk("T_initial", Dim::temperature, "initial temperature (problem 1)", 1000.0, 0.0, 1e4),
+  };
+  s.params[3].min_inclusive = false;
+  s.scalars = {{"max_rel_error", Dim::dimensionless, "problem 0: max |T - T_exact| / amplitude"},
+               {"energy_imbalance", Dim::dimensionless, "problem 1: (energy lost - flux integral) / energy lost"},
+               {"energy_lost", Dim::force_per_width, "problem 1: J per metre of depth"},
+               {"flux_integral", Dim::force_per_width, "problem 1: J per metre of depth"}};
+  s.run = [](const Values& v, const ProgressFn& progress) {
+    for (const char* k : {"problem", "n", "scheme"})
+      if (v.at(k) != std::floor(v.at(k))) throw InputError(k, "must be an integer");
+    return v.at("problem") == 0.0 ? run_mode(v, progress) : run_cooling(v, progress);
+  };
+  return s;
+}
+
+}  // namespace cutbench::sph

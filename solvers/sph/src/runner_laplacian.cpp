@@ -1,0 +1,140 @@
+#include <algorithm>
+#include <cmath>
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/sph/lattice.hpp"
+#include "cutbench/sph/operators.hpp"
+#include "cutbench/sph/runners.hpp"
+#include "specs.hpp"
+
+namespace cutbench::sph {
+
+LaplacianReconstruction laplacian_reconstruction(std::size_t n, double h_over_dx, double jitter_fraction,
+                                                 std::uint64_t seed) {
+  if (n < 3) throw InputError("n", "needs at least 3 particles per side");
+  if (!(h_over_dx > 0.0)) throw InputError("h_over_dx", "must be positive");
+  if (!(jitter_fraction >= 0.0 && jitter_fraction < 0.5)) throw InputError("jitter", "must be in [0, 0.5)");
+  const double dx = 2.0 / static_cast<double>(n - 1);
+  std::vector<Vec2> pos = rectangle_lattice(n, n, -1.0, 1.0, -1.0, 1.0);
+  std::vector<Vec2> nominal = pos;
+  if (jitter_fraction > 0.0) jitter(pos, jitter_fraction * dx, seed);
+  const std::vector<double> vol(pos.size(), dx * dx);
+  const CubicSpline2D kernel(h_over_dx * dx);
+  const NeighbourList nl = build_neighbours(pos, kernel.support());
+  const ParticleView view{pos, vol, nl, kernel};
+
+  LaplacianReconstruction out;
+  std::vector<double> f(pos.size());
+  for (std::size_t i = 0; i < pos.size(); ++i) {
+    f[i] = pos[i].squaredNorm();
+    out.x.push_back(pos[i].x());
+    out.y.push_back(pos[i].y());
+    out.exact.push_back(4.0);
+  }
+  out.brookshaw = laplacian_brookshaw(view, f);
+  FmfsLaplacian fmfs;
+  fmfs.update(view);
+  std::vector<char> used;
+  out.fmfs = fmfs.laplacian(view, f, nullptr, &used);
+
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < pos.size(); ++i) {
+    const double eb = std::abs(out.brookshaw[i] - 4.0), ef = std::abs(out.fmfs[i] - 4.0);
+    out.brookshaw_max_abs_error = std::max(out.brookshaw_max_abs_error, eb);
+    out.fmfs_max_abs_error = std::max(out.fmfs_max_abs_error, ef);
+    if (!used[i]) out.fmfs_irregular += 1.0;
+    // interior region by nominal (unjittered) lattice position
+    if (std::abs(nominal[i].x()) <= 0.8 + 1e-9 && std::abs(nominal[i].y()) <= 0.8 + 1e-9) {
+      sum += out.brookshaw[i];
+      ++count;
+      out.brookshaw_interior_max_abs_error = std::max(out.brookshaw_interior_max_abs_error, eb);
+    }
+  }
+  out.brookshaw_interior_mean = sum / static_cast<double>(count);
+  out.brookshaw_corner = 0.25 * (out.brookshaw[0] + out.brookshaw[n - 1] + out.brookshaw[n * (n - 1)] +
+                                 out.brookshaw[n * n - 1]);
+  return out;
+}
+
+SolverSpec detail::laplacian_spec() {
+  SolverSpec s;
+  s.name = "sph_laplacian";
+  s.description = "Reconstruction of the Laplacian of x^2 + y^2 on a particle lattice over [-1,1]^2 "
+                  "with the Brookshaw and FMFS operators";
+  s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Sec. 5.1, Fig. 3; Eqs. 12-15";
+  auto n = param("n", Dim::dimensionless, "particles per side");
+  n.default_value = 21.0;
+  n.min = 3.0;
+  n.max = 2001.0;
+  auto hr = param("h_over_dx", Dim::dimensionless, "smoothing length over particle spacing");
+  hr.default_value = 1.5;
+  hr.min = 0.5;
+  hr.max = 4.0;
+  auto jit = param("jitter", Dim::dimensionless, "random displacement amplitude as a fraction of dx");
+  jit.default_value = 0.0;
+  jit.min = 0.0;
+  jit.max = 0.5;
+  jit.max_inclusive = false;
+  auto seed = param("seed", Dim::dimensionless, "jitter random seed");
+  seed.default_value = 1.0;
+  seed.min = 0.0;
+  auto scheme = param("scheme", Dim::dimensionless,
+                      "0: both operators; 1: Brookshaw only; 2: FMFS only (the other column is NaN)");
+  scheme.default_value = 0.0;
+  scheme.min = 0.0;
+  scheme.max = 2.0;
+  s.params = {n, hr, jit, seed, scheme};
+  s.scalars = {
+      {"brookshaw_interior_mean", Dim::dimensionless, "mean Brookshaw Laplacian over |x|,|y| <= 0.8 (paper 4.027)"},
+      {"brookshaw_interior_max_abs_error", Dim::dimensionless, "max |Brookshaw - 4| over |x|,|y| <= 0.8"},
+      {"brookshaw_corner", Dim::dimensionless, "Brookshaw Laplacian at the corners (paper -22.12)"},
+      {"brookshaw_max_abs_error", Dim::dimensionless, "max |Brookshaw - 4| over all particles"},
+      {"fmfs_max_abs_error", Dim::dimensionless, "max |FMFS - 4| over all particles (paper: exact)"},
+      {"fmfs_irregular", Dim::dimensionless, "particles where the FMFS system was singular"},
+  };
+  s.run = [](const Values& v, const ProgressFn& progress) {
+    const double nd = v.at("n");
+    if (nd != std::floor(nd)) throw InputError("n", "must be an integer");
+    const double sch = v.at("scheme");
+    if (sch != std::floor(sch)) throw InputError("scheme", "must be 0, 1 or 2");
+    if (progress) progress(0.0, "building lattice");
+    auto r = laplacian_reconstruction(static_cast<std::size_t>(nd), v.at("h_over_dx"), v.at("jitter"),
+                                      static_cast<std::uint64_t>(v.at("seed")));
+    const int scheme_id = static_cast<int>(sch);
+    RunOutput out;
+    Table t;
+    t.name = "laplacian";
+    t.add("x", "1", r.x);
+    t.add("y", "1", r.y);
+    t.add("exact", "1", r.exact);
+    const double nan = nan_value();
+    t.add("brookshaw", "1", scheme_id == 2 ? std::vector<double>(r.x.size(), nan) : r.brookshaw);
+    t.add("fmfs", "1", scheme_id == 1 ? std::vector<double>(r.x.size(), nan) : r.fmfs);
+    out.tables.push_back(std::move(t));
+    if (scheme_id != 2) {
+      out.scalars["brookshaw_interior_mean"] = r.brookshaw_interior_mean;
+      out.scalars["brookshaw_interior_max_abs_error"] = r.brookshaw_interior_max_abs_error;
+      out.scalars["brookshaw_corner"] = r.brookshaw_corner;
+      out.scalars["brookshaw_max_abs_error"] = r.brookshaw_max_abs_error;
+    }
+    if (scheme_id != 1) {
+      out.scalars["fmfs_max_abs_error"] = r.fmfs_max_abs_error;
+      out.scalars["fmfs_irregular"] = r.fmfs_irregular;
+    }
+    for (const auto& [k, val] : out.scalars) out.scalar_units[k] = "1";
+    out.notes.push_back("Cubic B-spline kernel, support 2h; V_j = dx^2; neighbours j != i; the exact "
+                        "Laplacian is 4. Interior = nominal lattice positions with |x|,|y| <= 0.8.");
+    if (progress) progress(1.0, "done");
+    return out;
+  };
+  return s;
+}
+
+void register_solvers(SolverRegistry& registry) {
+  if (!registry.find("sph_laplacian")) registry.add(detail::laplacian_spec());
+  if (!registry.find("sph_heat")) registry.add(detail::heat_spec());
+  if (!registry.find("sph_cutting")) registry.add(detail::cutting_spec());
+}
+
+}  // namespace cutbench::sph

@@ -1,0 +1,464 @@
+#include "cutbench/sph/solid.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "cutbench/common/errors.hpp"
+#include "parallel.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#else
+namespace {
+int omp_get_num_threads() { return 1; }
+int omp_get_thread_num() { return 0; }
+}  // namespace
+#endif
+
+namespace cutbench::sph {
+
+namespace {
+Stress3 embed(const Mat2& m) {
+  Stress3 r = Stress3::Zero();
+  r.topLeftCorner<2, 2>() = m;
+  return r;
+}
+}  // namespace
+
+SolidSph::SolidSph(std::vector<Vec2> x, double dx, SolidMaterial material, SolidOptions options,
+                   double h_over_dx)
+    : x_(std::move(x)), mat_(material), opt_(options), kernel_(h_over_dx * dx), dx_(dx) {
+  if (!(dx > 0.0)) throw InputError("dx", "particle spacing must be positive");
+  if (!(mat_.density > 0.0) || !(mat_.young > 0.0) || !(mat_.poisson > -1.0 && mat_.poisson < 0.5))
+    throw InputError("material", "rho > 0, E > 0 and -1 < nu < 0.5 required");
+  const std::size_t n = x_.size();
+  v_.assign(n, Vec2::Zero());
+  a_.assign(n, Vec2::Zero());
+  m_.assign(n, mat_.density * dx * dx);
+  rho_.assign(n, mat_.density);
+  eps_p_.assign(n, 0.0);
+  T_.assign(n, mat_.jc.T_ref);
+  S_.assign(n, Stress3::Zero());
+  fixed_.assign(n, 0);
+  w_dx_ = kernel_.value(dx);
+}
+
+void SolidSph::set_fixed(std::vector<char> fixed) {
+  if (fixed.size() != x_.size()) throw InputError("fixed", "mask size differs from the particle count");
+  fixed_ = std::move(fixed);
+}
+
+void SolidSph::enable_thermal(ThermalOptions options, std::vector<char> fixed_temperature) {
+  if (fixed_temperature.size() != x_.size())
+    throw InputError("fixed_temperature", "mask size differs from the particle count");
+  if (!(options.heat.conductivity > 0.0) || !(options.heat.density > 0.0) || !(options.heat.specific_heat > 0.0))
+    throw InputError("thermal", "k, rho and c_p must be positive");
+  if (options.conduction_interval < 1) throw InputError("conduction_interval", "must be >= 1");
+  th_ = options;
+  t_fixed_ = std::move(fixed_temperature);
+  thermal_ = true;
+}
+
+void SolidSph::set_tool_thermal(HeatMaterial tool_heat, double depth) {
+  if (!tool_ || !thermal_) throw InputError("tool", "set_tool and enable_thermal must come first");
+  if (!(depth > 6.0 * dx_)) throw InputError("depth", "tool band must be deeper than 6 particle spacings");
+  tool_heat_ = tool_heat;
+  tool_x_.clear();
+  // lattice aligned with the lowest edge point (tool-frame origin of cutting_tool(...) is arbitrary:
+  // use the current world frame relative to tool_pos_)
+  const int m = static_cast<int>(std::ceil(depth / dx_)) + 1;
+  for (int j = -m; j <= m; ++j)
+    for (int i = -m; i <= m; ++i) {
+      const Vec2 p((i + 0.5) * dx_, (j + 0.5) * dx_);
+      if (p.norm() > depth) continue;
+      if (tool_->at(p).distance <= -0.45 * dx_) tool_x_.push_back(p);
+    }
+  const std::size_t n = tool_x_.size();
+  tool_V_.assign(n, dx_ * dx_);
+  tool_T_.assign(n, th_.boundary.T_ambient);
+  tool_fixed_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) tool_fixed_[i] = tool_x_[i].norm() > depth - 3.0 * dx_;
+  tool_nl_ = build_neighbours(tool_x_, kernel_.support());
+  const ParticleView view{tool_x_, tool_V_, tool_nl_, kernel_};
+  const SurfaceDetection s = detect_free_surface(view, th_.surface);
+  heat_masks(tool_nl_, s, tool_fixed_, th_.brookshaw_band, tool_use_fmfs_, tool_loss_);
+  tool_fmfs_.update(view);
+  tool_thermal_ = true;
+}
+
+double SolidSph::tool_heat_content() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < tool_x_.size(); ++i)
+    e += tool_heat_.density * tool_heat_.specific_heat * tool_V_[i] * (tool_T_[i] - th_.boundary.T_ambient);
+  return e;
+}
+
+double SolidSph::workpiece_heat_content() const {
+  if (!thermal_) return 0.0;
+  double e = 0.0;
+  const double rc = th_.heat.density * th_.heat.specific_heat;
+  for (std::size_t i = 0; i < x_.size(); ++i)
+    if (!t_fixed_[i]) e += rc * m_[i] / rho_[i] * (T_[i] - th_.boundary.T_ambient);
+  return e;
+}
+
+void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) {
+  // Called with nl_, x_ and rho_ of the start of the step.
+  const std::size_t n = x_.size();
+  std::vector<double> vol(n);
+  for (std::size_t i = 0; i < n; ++i) vol[i] = m_[i] / rho_[i];
+  const double rc = th_.heat.density * th_.heat.specific_heat;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (t_fixed_[i]) continue;
+    T_[i] += plastic_dT[i];
+    plastic_heat_ += plastic_dT[i] * rc * vol[i];
+  }
+  th_dt_acc_ += dt;
+  ++th_steps_;
+  const double alpha_max = tool_thermal_ ? std::max(th_.heat.diffusivity(), tool_heat_.diffusivity())
+                                         : th_.heat.diffusivity();
+  const double dt_limit = 0.1 * kernel_.h() * kernel_.h() / alpha_max;
+  if (th_steps_ < th_.conduction_interval && th_dt_acc_ + dt < dt_limit) return;
+  const int sub = std::max(1, static_cast<int>(std::ceil(th_dt_acc_ / dt_limit)));
+  const double dt_th = th_dt_acc_ / sub;
+  th_dt_acc_ = 0.0;
+  th_steps_ = 0;
+  const ParticleView view{x_, vol, nl_, kernel_};
+  surface_ = detect_free_surface(view, th_.surface);
+  std::vector<char> use_fmfs, loss;
+  heat_masks(nl_, surface_, t_fixed_, th_.brookshaw_band, use_fmfs, loss);
+  const FmfsLaplacian* fm = nullptr;
+  if (th_.scheme == HeatScheme::fmfs) {
+    fmfs_.update(view);
+    fm = &fmfs_;
+  }
+  std::vector<double> rate, tool_rate;
+  std::vector<Vec2> tool_world;
+  NeighbourList cross;
+  std::vector<char> tool_loss = tool_loss_;
+  if (tool_thermal_) {
+    tool_world.resize(tool_x_.size());
+    for (std::size_t k = 0; k < tool_x_.size(); ++k) tool_world[k] = tool_x_[k] + tool_pos_;
+    cross = build_cross_neighbours(x_, tool_world, kernel_.support());
+    const double c2 = 2.25 * dx_ * dx_;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = cross.begin(i); k < cross.end(i); ++k)
+        if ((x_[i] - tool_world[cross.index[k]]).squaredNorm() < c2) {
+          loss[i] = 0;
+          tool_loss[cross.index[k]] = 0;
+        }
+  }
+  const ParticleView tool_view{tool_x_, tool_V_, tool_nl_, kernel_};
+  for (int k = 0; k < sub; ++k) {
+    double sunk = 0.0, tool_sunk = 0.0;
+    const double lost = heat_rates(view, T_, fm, use_fmfs, t_fixed_, loss, th_.heat, th_.boundary, rate, nullptr, &sunk);
+    heat_lost_ += dt_th * lost;
+    heat_sunk_ += dt_th * sunk;
+    if (tool_thermal_) {
+      const double tool_lost =
+          heat_rates(tool_view, tool_T_, th_.scheme == HeatScheme::fmfs ? &tool_fmfs_ : nullptr, tool_use_fmfs_,
+                     tool_fixed_, tool_loss, tool_heat_, th_.boundary, tool_rate, nullptr, &tool_sunk);
+      heat_lost_ += dt_th * tool_lost;
+      heat_sunk_ += dt_th * tool_sunk;
+      cross_body_conduction(x_, vol, T_, th_.heat, tool_world, tool_V_, tool_T_, tool_heat_, cross, kernel_, rate,
+                            tool_rate);
+      // cross-body heat into fixed particles (their rates were zeroed before the cross term)
+      const double rcw = th_.heat.density * th_.heat.specific_heat;
+      const double rct = tool_heat_.density * tool_heat_.specific_heat;
+      for (std::size_t i = 0; i < n; ++i)
+        if (t_fixed_[i]) heat_sunk_ += dt_th * rate[i] * rcw * vol[i];
+      for (std::size_t i = 0; i < tool_T_.size(); ++i)
+        if (tool_fixed_[i]) heat_sunk_ += dt_th * tool_rate[i] * rct * tool_V_[i];
+      for (std::size_t i = 0; i < tool_T_.size(); ++i)
+        if (!tool_fixed_[i]) tool_T_[i] += dt_th * tool_rate[i];
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (!t_fixed_[i]) T_[i] += dt_th * rate[i];
+  }
+}
+
+std::vector<double> SolidSph::pressure() const {
+  std::vector<double> p(x_.size());
+  for (std::size_t i = 0; i < x_.size(); ++i) p[i] = mat_.bulk() * (rho_[i] / mat_.density - 1.0);
+  return p;
+}
+
+double SolidSph::stable_time_step() const {
+  double vmax = 0.0;
+  for (const auto& v : v_) vmax = std::max(vmax, v.norm());
+  double dt = opt_.cfl * kernel_.h() / (mat_.p_wave_speed() + vmax);
+  if (thermal_) dt = std::min(dt, 0.1 * kernel_.h() * kernel_.h() / th_.heat.diffusivity());
+  return dt;
+}
+
+void SolidSph::update_neighbours() {
+  const double skin = opt_.neighbour_skin * kernel_.h();
+  bool rebuild = x_listed_.size() != x_.size() || skin <= 0.0;
+  if (!rebuild) {
+    const double lim2 = 0.25 * skin * skin;
+    for (std::size_t i = 0; i < x_.size() && !rebuild; ++i) rebuild = (x_[i] - x_listed_[i]).squaredNorm() > lim2;
+  }
+  if (!rebuild) return;
+  nl_ = build_neighbours(x_, kernel_.support() + std::max(skin, 0.0));
+  // mirror_[k]: position of i in the row of j = index[k] (rows are sorted)
+  mirror_.resize(nl_.index.size());
+  for (std::size_t i = 0; i < x_.size(); ++i)
+    for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
+      const std::size_t j = nl_.index[k];
+      const auto first = nl_.index.begin() + static_cast<std::ptrdiff_t>(nl_.begin(j));
+      const auto last = nl_.index.begin() + static_cast<std::ptrdiff_t>(nl_.end(j));
+      mirror_[k] = static_cast<std::size_t>(std::lower_bound(first, last, static_cast<std::uint32_t>(i)) -
+                                            nl_.index.begin());
+    }
+  x_listed_ = x_;
+  ++builds_;
+}
+
+void SolidSph::accelerations() {
+  update_neighbours();
+  const std::size_t n = x_.size();
+  const double K = mat_.bulk(), c0 = mat_.bulk_speed(), h = kernel_.h();
+  std::vector<Stress3> sig_r2(n);   // sigma / rho^2
+  std::vector<Mat2> art(n, Mat2::Zero());  // artificial stress R_i
+  for (std::size_t i = 0; i < n; ++i) {
+    const double p = K * (rho_[i] / mat_.density - 1.0);
+    const Stress3 sig = S_[i] - p * Stress3::Identity();
+    sig_r2[i] = sig / (rho_[i] * rho_[i]);
+    if (opt_.artificial_stress > 0.0) {
+      // principal stresses of the in-plane part, closed form
+      const double sxx = sig(0, 0), syy = sig(1, 1), sxy = sig(0, 1);
+      const double mean = 0.5 * (sxx + syy), rad = std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
+      const double s1 = mean + rad, s2 = mean - rad;
+      if (s1 > 0.0) {
+        const double theta = 0.5 * std::atan2(2.0 * sxy, sxx - syy);  // direction of s1
+        const Vec2 e1(std::cos(theta), std::sin(theta)), e2(-e1.y(), e1.x());
+        const double k = -opt_.artificial_stress / (rho_[i] * rho_[i]);
+        art[i] = (k * s1) * (e1 * e1.transpose());
+        if (s2 > 0.0) art[i] += (k * s2) * (e2 * e2.transpose());
+      }
+    }
+  }
+  pair_gw_.resize(nl_.index.size());
+  pair_w_.resize(nl_.index.size());
+  // Each pair (i < j) is evaluated once: acc_i += m_j T_ij gradW_ij, acc_j -= m_i T_ij gradW_ij
+  // (T_ij symmetric, gradW_ji = -gradW_ij). Threads accumulate into private buffers that are summed
+  // in thread order: deterministic for a fixed thread count.
+  auto pair_force = [&](std::size_t i, std::size_t k, Vec2& acc_i, Vec2& acc_j) {
+    const std::size_t j = nl_.index[k];
+    const Vec2 xij = x_[i] - x_[j];
+    const double r = xij.norm();
+    const Vec2 gw = kernel_.gradient(xij, r);
+    const double wij = kernel_.value(r);
+    pair_gw_[k] = gw;
+    pair_w_[k] = wij;
+    pair_gw_[mirror_[k]] = -gw;
+    pair_w_[mirror_[k]] = wij;
+    Mat2 t = sig_r2[i].topLeftCorner<2, 2>() + sig_r2[j].topLeftCorner<2, 2>();
+    const Vec2 vij = v_[i] - v_[j];
+    const double vr = vij.dot(xij);
+    if (vr < 0.0 && (opt_.alpha_visc > 0.0 || opt_.beta_visc > 0.0)) {
+      const double mu = h * vr / (r * r + 0.01 * h * h);
+      const double rhobar = 0.5 * (rho_[i] + rho_[j]);
+      const double pi = (-opt_.alpha_visc * c0 * mu + opt_.beta_visc * mu * mu) / rhobar;
+      t.diagonal().array() -= pi;
+    }
+    if (opt_.artificial_stress > 0.0) {
+      const double f = wij / w_dx_;
+      const double f2 = f * f;
+      t += (f2 * f2) * (art[i] + art[j]);
+    }
+    const Vec2 tg = t * gw;
+    acc_i.noalias() += m_[j] * tg;
+    acc_j.noalias() -= m_[i] * tg;
+  };
+  std::vector<Vec2> acc(n, Vec2::Zero());
+  if (n < detail::kOmpMinParticles) {
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k)
+        if (nl_.index[k] > i) pair_force(i, k, acc[i], acc[nl_.index[k]]);
+  } else {
+    std::vector<std::vector<Vec2>> partial;
+#pragma omp parallel
+    {
+#pragma omp single
+      partial.assign(static_cast<std::size_t>(omp_get_num_threads()), std::vector<Vec2>());
+      auto& mine = partial[static_cast<std::size_t>(omp_get_thread_num())];
+      mine.assign(n, Vec2::Zero());
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k)
+          if (nl_.index[k] > i) pair_force(i, k, mine[i], mine[nl_.index[k]]);
+    }
+    for (const auto& part : partial)
+      for (std::size_t i = 0; i < n; ++i) acc[i] += part[i];
+  }
+  for (std::size_t i = 0; i < n; ++i) a_[i] = fixed_[i] ? Vec2::Zero() : Vec2(acc[i] + opt_.body_force);
+  have_accel_ = true;
+}
+
+void SolidSph::step(double dt) {
+  if (!(dt > 0.0)) throw InputError("dt", "time step must be positive");
+  const std::size_t n = x_.size();
+  if (!have_accel_) accelerations();
+  // kick
+  for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
+  // rates on x^n with v^{n+1/2} (nl_ belongs to x^n)
+  const double G = mat_.shear();
+  std::vector<Vec2> xsph(n, Vec2::Zero());
+  std::vector<double> rho_new(n);
+  std::vector<Stress3> s_new(n);
+  std::vector<double> plastic_dT(n, 0.0);
+  const double chi_rc =
+      thermal_ ? th_.taylor_quinney / (th_.heat.density * th_.heat.specific_heat) : 0.0;
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) {
+    Mat2 gv = Mat2::Zero(), lren = Mat2::Zero();
+    Vec2 xs = Vec2::Zero();
+    for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
+      const std::size_t j = nl_.index[k];
+      const Vec2& gw = pair_gw_[k];
+      const double vj = m_[j] / rho_[j];
+      gv.noalias() += vj * (v_[j] - v_[i]) * gw.transpose();
+      if (opt_.correct_velocity_gradient) lren.noalias() -= vj * (x_[i] - x_[j]) * gw.transpose();
+      if (opt_.xsph > 0.0) xs += (m_[j] / (0.5 * (rho_[i] + rho_[j])) * pair_w_[k]) * (v_[j] - v_[i]);
+    }
+    if (opt_.correct_velocity_gradient && std::abs(lren.determinant()) > 1e-6) gv = gv * lren.inverse();
+    xsph[i] = opt_.xsph * xs;
+    const Mat2 d2 = 0.5 * (gv + gv.transpose());
+    const Mat2 w2 = 0.5 * (gv - gv.transpose());
+    const Stress3 d = embed(d2), w = embed(w2);
+    const double trd = d.trace();
+    rho_new[i] = rho_[i] * (1.0 - dt * trd);
+    const Stress3 dev = d - trd / 3.0 * Stress3::Identity();
+    Stress3 s = S_[i] + dt * (2.0 * G * dev + w * S_[i] - S_[i] * w);
+    if (mat_.plastic) {
+      const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i]);
+      s = rr.deviator;
+      eps_p_[i] += rr.delta_eps_p;
+      plastic_dT[i] = chi_rc * rr.flow_stress * rr.delta_eps_p;
+    }
+    s_new[i] = s;
+  }
+  if (thermal_) thermal_update(dt, plastic_dT);
+  rho_.swap(rho_new);
+  S_.swap(s_new);
+  // drift
+  for (std::size_t i = 0; i < n; ++i) {
+    x_[i] += dt * (fixed_[i] ? v_[i] : Vec2(v_[i] + xsph[i]));  // prescribed particles follow v exactly
+    if (!x_[i].allFinite()) throw NumericalError("sph solid: non-finite particle position");
+  }
+  accelerations();
+  if (tool_ && contact_.model == ContactModel::penalty) penalty_contact(dt);
+  for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
+  time_ += dt;
+  if (tool_ && contact_.model == ContactModel::velocity) apply_contact(dt);
+  if (tool_ && contact_.model == ContactModel::penalty) tool_pos_ += dt * tool_vel_;
+  ++steps_;
+}
+
+void SolidSph::set_tool(std::shared_ptr<const ToolGeometry> tool, const Vec2& position, const Vec2& velocity,
+                        ContactOptions contact) {
+  if (!tool) throw InputError("tool", "null tool geometry");
+  if (!(contact.friction >= 0.0) || !(contact.kappa > 0.0 && contact.kappa <= 1.0) ||
+      !(contact.alpha > 0.0 && contact.alpha <= 1.0))
+    throw InputError("contact", "mu >= 0, 0 < kappa <= 1 and 0 < alpha <= 1 required");
+  tool_ = std::move(tool);
+  tool_pos_ = position;
+  tool_vel_ = velocity;
+  contact_ = contact;
+}
+
+void SolidSph::apply_contact(double dt) {
+  tool_pos_ += dt * tool_vel_;
+  const double offset = contact_.offset_fraction * dx_;
+  const double c_heat = thermal_ ? th_.heat.specific_heat : 0.0;
+  Vec2 force = Vec2::Zero();
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    if (fixed_[i]) continue;
+    const SignedDistance sd = tool_->at(x_[i] - tool_pos_);
+    const double g = sd.distance - offset;
+    if (g >= 0.0) continue;
+    const Vec2 vrel = v_[i] - tool_vel_;
+    const double vn = vrel.dot(sd.normal);
+    const double target = std::max(vn, -contact_.kappa * g / dt);
+    const double jn = m_[i] * (target - vn);
+    if (jn <= 0.0) continue;
+    const Vec2 vt = vrel - vn * sd.normal;
+    Vec2 jt = -m_[i] * vt;
+    const double limit = contact_.friction * jn;
+    if (jt.norm() > limit) jt *= limit / jt.norm();
+    const Vec2 impulse = jn * sd.normal + jt;
+    v_[i] += impulse / m_[i];
+    force -= impulse / dt;
+    const Vec2 vrel_after = v_[i] - tool_vel_;
+    const double slip = (vrel_after - vrel_after.dot(sd.normal) * sd.normal).norm();
+    const double heat = contact_.heat_fraction * jt.norm() * slip;  // J/m over this step
+    friction_heat_ += heat;
+    // in the audit metric rho0 c V_i T_i this adds exactly `heat`
+    if (thermal_ && !t_fixed_[i]) T_[i] += heat * rho_[i] / (th_.heat.density * c_heat * m_[i]);
+  }
+  tool_force_ = force;
+}
+
+void SolidSph::penalty_contact(double dt) {
+  // positions are x^{n+1}; the tool is at its position of time_ + dt
+  const Vec2 tool_pos = tool_pos_ + dt * tool_vel_;
+  const double offset = contact_.offset_fraction * dx_;
+  const double c_heat = thermal_ ? th_.heat.specific_heat : 0.0;
+  if (friction_history_.size() != x_.size()) friction_history_.assign(x_.size(), Vec2::Zero());
+  Vec2 force = Vec2::Zero();
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    if (fixed_[i]) continue;
+    const SignedDistance sd = tool_->at(x_[i] - tool_pos);
+    const double g = sd.distance - offset;
+    if (g >= 0.0) {
+      friction_history_[i] = Vec2::Zero();
+      continue;
+    }
+    const Vec2 fn = (-contact_.alpha * m_[i] * g / (dt * dt)) * sd.normal;
+    const Vec2 vrel = v_[i] - tool_vel_;
+    const Vec2 vt = vrel - vrel.dot(sd.normal) * sd.normal;
+    Vec2 ft = friction_history_[i] - (contact_.alpha * m_[i] / dt) * vt;
+    const double fy = contact_.friction * fn.norm();
+    // Only the plastic (slip) part of the tangential motion dissipates: slip = (|f*| - f_y) / k_t
+    // with the tangential stiffness k_t = alpha m / dt^2; the elastic stick part is stored.
+    double heat = 0.0;
+    const double ftrial = ft.norm();
+    if (ftrial > fy) {
+      const double kt = contact_.alpha * m_[i] / (dt * dt);
+      heat = contact_.heat_fraction * fy * (ftrial - fy) / kt;  // J/m over this step
+      ft *= fy / ftrial;
+    }
+    friction_history_[i] = ft;
+    a_[i] += (fn + ft) / m_[i];
+    force -= fn + ft;
+    friction_heat_ += heat;
+    if (thermal_ && !t_fixed_[i]) T_[i] += heat * rho_[i] / (th_.heat.density * c_heat * m_[i]);
+  }
+  tool_force_ = force;
+}
+
+Vec2 SolidSph::momentum() const {
+  Vec2 p = Vec2::Zero();
+  for (std::size_t i = 0; i < x_.size(); ++i) p += m_[i] * v_[i];
+  return p;
+}
+
+double SolidSph::kinetic_energy() const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < x_.size(); ++i) e += 0.5 * m_[i] * v_[i].squaredNorm();
+  return e;
+}
+
+double SolidSph::strain_energy() const {
+  const double K = mat_.bulk(), G = mat_.shear();
+  double e = 0.0;
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    const double p = K * (rho_[i] / mat_.density - 1.0);
+    e += m_[i] / rho_[i] * (p * p / (2.0 * K) + (S_[i].array() * S_[i].array()).sum() / (4.0 * G));
+  }
+  return e;
+}
+
+}  // namespace cutbench::sph

@@ -1,0 +1,90 @@
+// Rigid tool geometry and Coulomb contact: a block sliding on a rigid plane under gravity.
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <iostream>
+
+#include "cutbench/sph/lattice.hpp"
+#include "cutbench/sph/solid.hpp"
+#include "cutbench/sph/tool.hpp"
+
+using namespace cutbench::sph;
+namespace tt = boost::test_tools;
+
+BOOST_AUTO_TEST_SUITE(tool_and_contact)
+
+BOOST_AUTO_TEST_CASE(cutting_tool_signed_distance) {
+  const double deg = 3.14159265358979323846 / 180.0, r = 2.8e-6;
+  const Vec2 low(1e-3, 2e-4);
+  const auto tool = cutting_tool(0.0, 7.0 * deg, r, low, 2e-4);
+  // lowest point of the edge is on the surface, normal pointing down
+  auto s = tool->at(low);
+  BOOST_TEST(std::abs(s.distance) < 1e-15);
+  BOOST_TEST(s.normal.y() == -1.0, tt::tolerance(1e-12));
+  // edge centre lies r inside
+  s = tool->at(low + Vec2(0.0, r));
+  BOOST_TEST(s.distance == -r, tt::tolerance(1e-9));
+  // rake face (rake 0): the vertical plane x = low.x - r, tangent to the edge circle
+  s = tool->at(Vec2(low.x() - 5e-6, low.y() + 50e-6));
+  BOOST_TEST(s.distance == 5e-6 - r, tt::tolerance(1e-9));
+  BOOST_TEST(s.normal.x() == -1.0, tt::tolerance(1e-12));
+  // clearance face rises at 7 deg: a point 50 um behind the edge, 1 um below the face
+  const Vec2 on_face = low + Vec2(0.0, r) + 50e-6 * Vec2(std::cos(7 * deg), std::sin(7 * deg)) +
+                       r * Vec2(std::sin(7 * deg), -std::cos(7 * deg));
+  s = tool->at(on_face + 1e-6 * Vec2(std::sin(7 * deg), -std::cos(7 * deg)));
+  BOOST_TEST(s.distance == 1e-6, tt::tolerance(1e-9));
+  // a point inside the body
+  BOOST_TEST(tool->at(low + Vec2(50e-6, 60e-6)).distance < 0.0);
+  // positive rake tilts the face: at height 50 um above the edge the face lies further +x
+  const auto raked = cutting_tool(10.0 * deg, 7.0 * deg, r, low, 2e-4);
+  BOOST_TEST(raked->at(Vec2(low.x(), low.y() + 50e-6)).distance > 0.0);
+}
+
+// Block on a rigid plane, pressed by gravity g and sliding at v0: Coulomb friction decelerates the
+// centre of mass at mu g until it sticks at t = v0 / (mu g).
+BOOST_AUTO_TEST_CASE(block_sliding_with_coulomb_friction) {
+ for (auto model : {ContactModel::velocity, ContactModel::penalty}) {
+  const int nx = 12, ny = 5;
+  const double dx = 1e-4, mu = 0.3, v0 = 1.0, t_stop = 1e-4;
+  const double g = v0 / (mu * t_stop);
+  auto x = rectangle_lattice(nx, ny, 0.5 * dx, (nx - 0.5) * dx, 0.5 * dx, (ny - 0.5) * dx);
+  SolidMaterial mat;
+  SolidOptions opt;
+  opt.body_force = Vec2(0.0, -g);
+  SolidSph s(x, dx, mat, opt);
+  for (auto& v : s.velocity()) v = Vec2(v0, 0.0);
+  ContactOptions c;
+  c.friction = mu;
+  c.model = model;
+  s.set_tool(std::make_shared<HalfPlane>(Vec2(0.0, 0.0), Vec2(0.0, 1.0)), Vec2::Zero(), Vec2::Zero(), c);
+  auto com_v = [&]() { return s.momentum().x() / (s.mass()[0] * static_cast<double>(x.size())); };
+  double vmid = 0.0, fy_sum = 0.0, fx_sum = 0.0;
+  std::size_t samples = 0;
+  const double dt = s.stable_time_step();
+  while (s.time() < 1.5 * t_stop) {
+    s.step(dt);
+    if (s.time() <= 0.5 * t_stop) {
+      vmid = com_v();
+      fx_sum += s.tool_force().x();
+      fy_sum += s.tool_force().y();
+      ++samples;
+    }
+  }
+  double ymin = 1.0;
+  for (const auto& p : s.positions()) ymin = std::min(ymin, p.y());
+  const double weight = s.mass()[0] * static_cast<double>(x.size()) * g;
+  std::cout << (model == ContactModel::penalty ? "penalty" : "velocity") << " contact, sliding block: v(t_stop/2) = " << vmid << " (expected " << 0.5 * v0 << "), v(1.5 t_stop) = " << com_v()
+            << ", mean normal force " << -fy_sum / samples << " vs weight " << weight << ", mean friction ratio "
+            << fx_sum / fy_sum << ", lowest particle " << ymin / dx << " dx, friction heat " << s.friction_heat()
+            << " J/m\n";
+  BOOST_TEST(vmid == 0.5 * v0, tt::tolerance(0.03));
+  BOOST_TEST(std::abs(com_v()) < 0.02 * v0);      // stuck
+  BOOST_TEST(-fy_sum / samples == weight, tt::tolerance(0.03));
+  BOOST_TEST(-fx_sum / fy_sum == mu, tt::tolerance(0.02));  // tool dragged forward, pushed down
+  BOOST_TEST(ymin > 0.3 * dx);  // no penetration beyond the contact offset
+  // friction work = kinetic energy lost while sliding (v0^2/2 per unit mass), eta = 1
+  const double ke = 0.5 * s.mass()[0] * static_cast<double>(x.size()) * v0 * v0;
+  BOOST_TEST(s.friction_heat() == ke, tt::tolerance(0.05));
+ }
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,59 @@
+// Johnson-Cook flow stress and radial return against closed forms.
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+
+#include "cutbench/sph/johnson_cook.hpp"
+
+using namespace cutbench::sph;
+namespace tt = boost::test_tools;
+
+BOOST_AUTO_TEST_SUITE(johnson_cook)
+
+BOOST_AUTO_TEST_CASE(flow_stress_closed_form) {
+  JohnsonCook jc;  // A 862, B 331 MPa, C 0.01, m 0.8, n 0.35
+  jc.T_ref = 300.0;
+  jc.T_melt = 1836.0;
+  const double eps = 0.2, rate = 1e4, T = 700.0;
+  const double expect = (862e6 + 331e6 * std::pow(0.2, 0.35)) * (1.0 + 0.01 * std::log(1e4)) *
+                        (1.0 - std::pow(400.0 / 1536.0, 0.8));
+  BOOST_TEST(jc.flow_stress(eps, rate, T) == expect, tt::tolerance(1e-14));
+  BOOST_TEST(jc.flow_stress(0.0, 0.0, 300.0) == 862e6);
+  BOOST_TEST(jc.flow_stress(0.0, 0.5, 250.0) == 862e6);  // rate and temperature factors floored
+  BOOST_TEST(jc.flow_stress(0.3, 10.0, 2000.0) == 0.0);  // above melting
+  // derivatives against central differences
+  const double e = 1e-7;
+  BOOST_TEST(jc.d_strain(eps, rate, T) ==
+                 (jc.flow_stress(eps + e, rate, T) - jc.flow_stress(eps - e, rate, T)) / (2 * e),
+             tt::tolerance(1e-6));
+  BOOST_TEST(jc.d_rate(eps, rate, T) ==
+                 (jc.flow_stress(eps, rate * (1 + e), T) - jc.flow_stress(eps, rate * (1 - e), T)) / (2 * e * rate),
+             tt::tolerance(1e-6));
+}
+
+// Manufactured point test: pick the plastic increment d*, build the trial stress whose return is
+// d* exactly (q_trial = 3 G d* + sigma_y(eps0 + d*, d*/dt, T)), and check the mapping finds it.
+BOOST_AUTO_TEST_CASE(radial_return_recovers_manufactured_increment) {
+  const JohnsonCook jc;
+  const double G = 41.9e9, dt = 1e-9;
+  Stress3 dir;
+  dir << 1.0, 0.4, 0.0, 0.4, -0.3, 0.0, 0.0, 0.0, -0.7;  // traceless, plane-strain pattern
+  dir /= von_mises(dir);
+  for (double eps0 : {0.0, 0.05, 1.2})
+    for (double d_star : {1e-8, 1e-5, 3e-3})
+      for (double T : {300.0, 900.0}) {
+        const double q = 3.0 * G * d_star + jc.flow_stress(eps0 + d_star, d_star / dt, T);
+        const auto r = radial_return(jc, q * dir, G, eps0, dt, T);
+        BOOST_TEST(r.plastic);
+        BOOST_TEST(r.delta_eps_p == d_star, tt::tolerance(1e-9));
+        BOOST_TEST(von_mises(r.deviator) == r.flow_stress, tt::tolerance(1e-10));  // on the yield surface
+        BOOST_TEST((r.deviator / von_mises(r.deviator) - dir).norm() < 1e-12);       // radial
+        BOOST_TEST(r.iterations < 60);
+      }
+  // elastic trial state comes back unchanged
+  const auto el = radial_return(jc, 800e6 * dir, G, 0.0, dt, 300.0);
+  BOOST_TEST(!el.plastic);
+  BOOST_TEST(el.delta_eps_p == 0.0);
+  BOOST_TEST((el.deviator - 800e6 * dir).norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

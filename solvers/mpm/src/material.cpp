@@ -1,0 +1,59 @@
+#include "cutbench/mpm/material.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace cutbench::mpm {
+
+double HyperelasticJ2::p_wave_speed() const { return std::sqrt((K + 4.0 * G / 3.0) / rho); }
+
+double HyperelasticJ2::plastic_modulus(double E, double E_T) {
+  if (E_T <= 0.0) return 0.0;
+  if (E_T >= E) return std::numeric_limits<double>::infinity();
+  return E * E_T / (E - E_T);
+}
+
+Eigen::Matrix3d kirchhoff_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& be_bar, double J) {
+  const double tr3 = be_bar.trace() / 3.0;
+  Eigen::Matrix3d tau = mat.G * (be_bar - tr3 * Eigen::Matrix3d::Identity());
+  const double p = 0.5 * mat.K * (J * J - 1.0);  // J U'(J) with U = K/2 ((J^2-1)/2 - ln J)
+  tau.diagonal().array() += p;
+  return tau;
+}
+
+Eigen::Matrix3d update_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& f, double J,
+                              PlasticState& state, double* dlambda_out) {
+  const double jf = f.determinant();
+  const Eigen::Matrix3d fbar = std::cbrt(1.0 / jf) * f;
+  Eigen::Matrix3d be_tr = fbar * state.be_bar * fbar.transpose();
+  const double ibar = be_tr.trace() / 3.0;
+  Eigen::Matrix3d s_tr = mat.G * (be_tr - ibar * Eigen::Matrix3d::Identity());
+  const double snorm = s_tr.norm();
+  const double sqrt23 = std::sqrt(2.0 / 3.0);
+  const double ftrial = snorm - sqrt23 * (mat.sigma_y0 + mat.Ep * state.alpha);
+  double dlambda = 0.0;
+  if (ftrial > 0.0 && snorm > 0.0) {
+    const double mubar = mat.G * ibar;
+    dlambda = ftrial / (2.0 * (mubar + mat.Ep / 3.0));
+    const Eigen::Matrix3d n = s_tr / snorm;
+    s_tr -= 2.0 * mubar * dlambda * n;
+    be_tr -= 2.0 * ibar * dlambda * n;
+    state.alpha += sqrt23 * dlambda;
+  }
+  state.be_bar = be_tr;
+  if (dlambda_out) *dlambda_out = dlambda;
+  Eigen::Matrix3d tau = s_tr;
+  tau.diagonal().array() += 0.5 * mat.K * (J * J - 1.0);
+  return tau;
+}
+
+double strain_energy_density(const HyperelasticJ2& mat, const Eigen::Matrix3d& be_bar, double J) {
+  return 0.5 * mat.G * (be_bar.trace() - 3.0) + 0.5 * mat.K * (0.5 * (J * J - 1.0) - std::log(J));
+}
+
+double von_mises(const Eigen::Matrix3d& sigma) {
+  const Eigen::Matrix3d s = sigma - sigma.trace() / 3.0 * Eigen::Matrix3d::Identity();
+  return std::sqrt(1.5) * s.norm();
+}
+
+}  // namespace cutbench::mpm

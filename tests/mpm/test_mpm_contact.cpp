@@ -1,0 +1,104 @@
+#define BOOST_TEST_MODULE mpm_contact
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <cstdio>
+
+#include "cutbench/mpm/problem.hpp"
+#include "mpm_test_util.hpp"
+
+using namespace cutbench::mpm;
+using namespace cutbench::mpm::testing;
+namespace tt = boost::test_tools;
+
+namespace {
+struct SlideResult {
+  double Fx = 0.0, Fy = 0.0, weight = 0.0, accel = 0.0;
+};
+
+// An elastic block (10 x 5 mm) pressed by gravity onto a rigid plate that slides under it at
+// V = 1 m/s. While the block slips, the plate's force on it is F_t = mu F_n with F_n = m g.
+SlideResult slide(double mu, double g) {
+  const double dx = 1e-3;
+  MpmConfig cfg;
+  cfg.grid.dx = dx;
+  cfg.grid.x0 = -8 * dx;
+  cfg.grid.y0 = -6 * dx;
+  cfg.grid.nx = 40;
+  cfg.grid.ny = 16;
+  cfg.material = elastic();
+  cfg.numerics.pic_fraction = 1.0;
+  cfg.contact.mu = mu;
+  cfg.contact.n_above = Eigen::Vector2d(0.0, -1.0);  // from the block into the plate below
+  cfg.tool.velocity = Eigen::Vector2d(1.0, 0.0);
+  cfg.gravity = Eigen::Vector2d(0.0, -g);
+  MpmProblem pb(cfg);
+  fill_rect(pb, dx, 0.0, 10 * dx, 0.0, 5 * dx, false);   // block
+  fill_rect(pb, dx, -6 * dx, 20 * dx, -2 * dx, 0.0, true);  // rigid plate
+  pb.setup();
+  double mass = 0.0;
+  for (std::size_t p = 0; p < pb.size(); ++p) {
+    if (!pb.rigid(p)) mass += pb.mass(p);
+  }
+  // let the block settle for 0.2 ms, then average while it still slips (slip ends at V/(mu g))
+  const double t_end = mu > 0.0 ? std::min(2.0e-3, 0.8 / (mu * g)) : 2.0e-3;
+  SlideResult r;
+  long n = 0;
+  double v0 = 0.0, t0 = 0.0;
+  while (pb.time() < t_end) {
+    pb.step();
+    if (pb.time() < 0.2e-3) continue;
+    if (n == 0) {
+      v0 = pb.momentum().x() / mass;
+      t0 = pb.time();
+    }
+    r.Fx += pb.contact_forces().total.x();
+    r.Fy += pb.contact_forces().total.y();
+    ++n;
+  }
+  r.Fx /= static_cast<double>(n);
+  r.Fy /= static_cast<double>(n);
+  r.weight = mass * g;
+  r.accel = (pb.momentum().x() / mass - v0) / (pb.time() - t0);
+  return r;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(block_sliding_on_rigid_plate_coulomb) {
+  const double g = 2000.0;
+  for (double mu : {0.2, 0.5}) {
+    const SlideResult r = slide(mu, g);
+    std::printf("sliding block mu = %.2f: F_t = %.4f N/m, F_n = %.4f N/m (weight %.4f), F_t/F_n = %.4f (exact %.2f), "
+                "block acceleration %.1f m/s^2 (mu g = %.1f)\n",
+                mu, r.Fx, r.Fy, r.weight, r.Fx / r.Fy, mu, r.accel, mu * g);
+    BOOST_TEST(r.Fx / r.Fy == mu, tt::tolerance(0.02));
+    BOOST_TEST(r.Fy == r.weight, tt::tolerance(0.05));
+    BOOST_TEST(r.accel == mu * g, tt::tolerance(0.05));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(frictionless_plate_transmits_no_tangential_force) {
+  const SlideResult r = slide(0.0, 2000.0);
+  std::printf("frictionless: F_t = %.3e N/m, F_n = %.4f N/m\n", r.Fx, r.Fy);
+  BOOST_TEST(std::fabs(r.Fx) < 1e-12 * r.Fy);
+  BOOST_TEST(r.Fy == r.weight, tt::tolerance(0.05));
+}
+
+BOOST_AUTO_TEST_CASE(rigid_velocity_ramp_displacement) {
+  MpmConfig cfg;
+  cfg.grid.dx = 1e-3;
+  cfg.grid.x0 = cfg.grid.y0 = -4e-3;
+  cfg.grid.nx = cfg.grid.ny = 30;
+  cfg.material = elastic();
+  cfg.tool.velocity = Eigen::Vector2d(2.0, 0.0);
+  cfg.tool.t_ramp = 1e-4;
+  MpmProblem pb(cfg);
+  fill_rect(pb, 1e-3, 10e-3, 12e-3, 10e-3, 12e-3, false);
+  fill_rect(pb, 1e-3, 0.0, 2e-3, 0.0, 2e-3, true);
+  pb.setup();
+  while (pb.time() < 3e-4) pb.step();
+  const double exact = 2.0 * (0.5 * 1e-4 + (pb.time() - 1e-4));
+  BOOST_TEST(pb.rigid_displacement().x() == exact, tt::tolerance(1e-3));
+  for (std::size_t p = 0; p < pb.size(); ++p) {
+    if (pb.rigid(p)) BOOST_TEST(pb.velocity(p).x() == 2.0, tt::tolerance(1e-12));
+  }
+}

@@ -288,12 +288,15 @@ void MpmProblem::cohesive_forces() {
       const Eigen::Vector2d& pt = sidx == 0 ? crack_.top[k] : crack_.bot[k];
       const int side = sidx == 0 ? 1 : 0;
       const Eigen::Vector2d fvec = sidx == 0 ? Eigen::Vector2d(-force) : force;
+      // Mass-weighted spreading (share S_i m_i / sum S m): every node of the field gets the same
+      // acceleration, so nodes that hold only a sliver of a particle are not kicked.
       double wsum = 0.0;
-      for_point_nodes(pt, side, [&](std::size_t, double s) { wsum += s; });
+      for_point_nodes(pt, side, [&](std::size_t kk, double s) { wsum += s * nodes_[kk].m; });
       if (wsum <= 0.0) continue;
       for_point_nodes(pt, side, [&](std::size_t kk, double s) {
-        nodes_[kk].fx += fvec.x() * s / wsum;
-        nodes_[kk].fy += fvec.y() * s / wsum;
+        const double share = s * nodes_[kk].m / wsum;
+        nodes_[kk].fx += fvec.x() * share;
+        nodes_[kk].fy += fvec.y() * share;
       });
     }
   }
@@ -506,9 +509,9 @@ void MpmProblem::grid_to_particles() {
 Eigen::Vector2d MpmProblem::field_velocity(const Eigen::Vector2d& pt, int side) const {
   Eigen::Vector2d v = Eigen::Vector2d::Zero();
   double wsum = 0.0;
-  for_point_nodes(pt, side, [&](std::size_t k, double s) {
-    v += s * vnew_[k];
-    wsum += s;
+  for_point_nodes(pt, side, [&](std::size_t k, double s) {  // momentum-weighted, see cohesive_forces()
+    v += s * nodes_[k].m * vnew_[k];
+    wsum += s * nodes_[k].m;
   });
   return wsum > 0.0 ? Eigen::Vector2d(v / wsum) : Eigen::Vector2d::Zero();
 }

@@ -21,10 +21,22 @@ Eigen::Matrix3d kirchhoff_stress(const HyperelasticJ2& mat, const Eigen::Matrix3
   return tau;
 }
 
+namespace {
+// r^(1/3) for r near 1 (the volume change of one time step): two Newton steps from the linearised
+// root are accurate to round-off for |r - 1| < 0.05 and much cheaper than std::cbrt.
+inline double cbrt_near_one(double r) {
+  if (std::fabs(r - 1.0) > 0.05) return std::cbrt(r);
+  double y = 1.0 + (r - 1.0) / 3.0;
+  y -= (y * y * y - r) / (3.0 * y * y);
+  y -= (y * y * y - r) / (3.0 * y * y);
+  return y;
+}
+}  // namespace
+
 Eigen::Matrix3d update_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& f, double J,
                               PlasticState& state, double* dlambda_out) {
   const double jf = f.determinant();
-  const Eigen::Matrix3d fbar = std::cbrt(1.0 / jf) * f;
+  const Eigen::Matrix3d fbar = cbrt_near_one(1.0 / jf) * f;
   Eigen::Matrix3d be_tr = fbar * state.be_bar * fbar.transpose();
   const double ibar = be_tr.trace() / 3.0;
   Eigen::Matrix3d s_tr = mat.G * (be_tr - ibar * Eigen::Matrix3d::Identity());

@@ -15,7 +15,7 @@ namespace cutbench::mpm {
 
 namespace {
 constexpr int kFields = 3;
-constexpr int kRigid = 2;
+constexpr std::uint8_t kRigid = 2;
 }  // namespace
 
 MpmProblem::MpmProblem(MpmConfig cfg) : cfg_(std::move(cfg)) {
@@ -165,6 +165,15 @@ void MpmProblem::compute_shapes() {
     }
     i0_[p] = i0;
     j0_[p] = j0;
+    // fast path: all three node rows on the particle's side of the crack line (or no crack)
+    const double ylo = g.y0 + j0 * g.dx, yhi = ylo + 2.0 * g.dx;
+    const std::uint8_t uniform =
+        rigid_[p] ? kRigid : std::uint8_t{0};
+    const bool same_side = !crack || rigid_[p] || (side_[p] == 1 ? ylo > cfg_.crack.y : yhi <= cfg_.crack.y);
+    if (same_side) {
+      for (int q = 0; q < 9; ++q) fid_[9 * p + static_cast<std::size_t>(q)] = uniform;
+      continue;
+    }
     for (int b = 0; b < 3; ++b) {
       for (int a = 0; a < 3; ++a) {
         std::uint8_t f = 0;

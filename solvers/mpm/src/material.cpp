@@ -59,6 +59,51 @@ Eigen::Matrix3d update_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& 
   return tau;
 }
 
+double update_stress_plane_strain(const HyperelasticJ2& mat, const Eigen::Matrix2d& l, double J, double b[4],
+                                  double& alpha, double tau[4]) {
+  const double f00 = 1.0 + l(0, 0), f01 = l(0, 1), f10 = l(1, 0), f11 = 1.0 + l(1, 1);
+  const double c = cbrt_near_one(1.0 / (f00 * f11 - f01 * f10));
+  const double a00 = c * f00, a01 = c * f01, a10 = c * f10, a11 = c * f11;
+  // be = fbar B fbar^T, B symmetric
+  const double t00 = a00 * b[0] + a01 * b[1], t01 = a00 * b[1] + a01 * b[2];
+  const double t10 = a10 * b[0] + a11 * b[1], t11 = a10 * b[1] + a11 * b[2];
+  double bxx = t00 * a00 + t01 * a01;
+  double bxy = t00 * a10 + t01 * a11;
+  double byy = t10 * a10 + t11 * a11;
+  double bzz = c * c * b[3];
+  const double ibar = (bxx + byy + bzz) / 3.0;
+  double sxx = mat.G * (bxx - ibar), sxy = mat.G * bxy, syy = mat.G * (byy - ibar), szz = mat.G * (bzz - ibar);
+  const double snorm = std::sqrt(sxx * sxx + syy * syy + szz * szz + 2.0 * sxy * sxy);
+  const double sqrt23 = 0.816496580927726;
+  const double ftrial = snorm - sqrt23 * (mat.sigma_y0 + mat.Ep * alpha);
+  double dlambda = 0.0;
+  if (ftrial > 0.0 && snorm > 0.0) {
+    const double mubar = mat.G * ibar;
+    dlambda = ftrial / (2.0 * (mubar + mat.Ep / 3.0));
+    const double ks = 1.0 - 2.0 * mubar * dlambda / snorm;  // s <- s (1 - 2 mubar dl / |s|)
+    const double kb = 2.0 * ibar * dlambda / snorm;         // be <- be - kb s
+    bxx -= kb * sxx;
+    bxy -= kb * sxy;
+    byy -= kb * syy;
+    bzz -= kb * szz;
+    sxx *= ks;
+    sxy *= ks;
+    syy *= ks;
+    szz *= ks;
+    alpha += sqrt23 * dlambda;
+  }
+  b[0] = bxx;
+  b[1] = bxy;
+  b[2] = byy;
+  b[3] = bzz;
+  const double p = 0.5 * mat.K * (J * J - 1.0);
+  tau[0] = sxx + p;
+  tau[1] = sxy;
+  tau[2] = syy + p;
+  tau[3] = szz + p;
+  return dlambda;
+}
+
 double strain_energy_density(const HyperelasticJ2& mat, const Eigen::Matrix3d& be_bar, double J) {
   return 0.5 * mat.G * (be_bar.trace() - 3.0) + 0.5 * mat.K * (0.5 * (J * J - 1.0) - std::log(J));
 }

@@ -487,30 +487,25 @@ void MpmProblem::grid_to_particles() {
     vx_[p] = vnew.x();
     vy_[p] = vnew.y();
     // deformation and stress (USL: gradient of the updated grid velocity)
-    Eigen::Matrix3d f = Eigen::Matrix3d::Identity();
-    f.topLeftCorner<2, 2>() += L * dt;
-    Eigen::Matrix2d F;
-    F << Fxx_[p], Fxy_[p], Fyx_[p], Fyy_[p];
-    F = f.topLeftCorner<2, 2>() * F;
-    Fxx_[p] = F(0, 0);
-    Fxy_[p] = F(0, 1);
-    Fyx_[p] = F(1, 0);
-    Fyy_[p] = F(1, 1);
-    const double J = F.determinant();
+    const Eigen::Matrix2d l = L * dt;
+    const double F00 = Fxx_[p], F01 = Fxy_[p], F10 = Fyx_[p], F11 = Fyy_[p];
+    Fxx_[p] = F00 + l(0, 0) * F00 + l(0, 1) * F10;
+    Fxy_[p] = F01 + l(0, 0) * F01 + l(0, 1) * F11;
+    Fyx_[p] = F10 + l(1, 0) * F00 + l(1, 1) * F10;
+    Fyy_[p] = F11 + l(1, 0) * F01 + l(1, 1) * F11;
+    const double J = Fxx_[p] * Fyy_[p] - Fxy_[p] * Fyx_[p];
     J_[p] = J;
-    PlasticState st;
-    st.be_bar << bxx_[p], bxy_[p], 0.0, bxy_[p], byy_[p], 0.0, 0.0, 0.0, bzz_[p];
-    st.alpha = alpha_[p];
-    const Eigen::Matrix3d tau = update_stress(mat, f, J, st);
-    bxx_[p] = st.be_bar(0, 0);
-    bxy_[p] = 0.5 * (st.be_bar(0, 1) + st.be_bar(1, 0));
-    byy_[p] = st.be_bar(1, 1);
-    bzz_[p] = st.be_bar(2, 2);
-    alpha_[p] = st.alpha;
-    txx_[p] = tau(0, 0);
-    txy_[p] = 0.5 * (tau(0, 1) + tau(1, 0));
-    tyy_[p] = tau(1, 1);
-    tzz_[p] = tau(2, 2);
+    double b[4] = {bxx_[p], bxy_[p], byy_[p], bzz_[p]};
+    double tau[4];
+    update_stress_plane_strain(mat, l, J, b, alpha_[p], tau);
+    bxx_[p] = b[0];
+    bxy_[p] = b[1];
+    byy_[p] = b[2];
+    bzz_[p] = b[3];
+    txx_[p] = tau[0];
+    txy_[p] = tau[1];
+    tyy_[p] = tau[2];
+    tzz_[p] = tau[3];
   }
   rigid_disp_ += V * dt;
 }

@@ -34,6 +34,13 @@ struct PlasticState {
 Eigen::Matrix3d update_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& f, double J,
                               PlasticState& state, double* dlambda_out = nullptr);
 
+// The same update specialised to plane strain on packed components (the solver's kernel):
+// l = L dt (2x2 velocity-gradient increment, f = I + l, f_zz = 1), J = det F_{n+1},
+// b = {xx, xy, yy, zz} of the isochoric elastic left Cauchy-Green tensor (updated in place),
+// alpha updated in place, tau = {xx, xy, yy, zz} Kirchhoff stress out. Returns dlambda.
+double update_stress_plane_strain(const HyperelasticJ2& mat, const Eigen::Matrix2d& l, double J, double b[4],
+                                  double& alpha, double tau[4]);
+
 // Kirchhoff stress of an elastic state (no return mapping).
 Eigen::Matrix3d kirchhoff_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& be_bar, double J);
 

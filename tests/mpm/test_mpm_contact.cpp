@@ -102,3 +102,37 @@ BOOST_AUTO_TEST_CASE(rigid_velocity_ramp_displacement) {
     if (pb.rigid(p)) BOOST_TEST(pb.velocity(p).x() == 2.0, tt::tolerance(1e-12));
   }
 }
+
+// Grid-kinetic-energy feedback damping: alpha grows while there is kinetic energy, removes it,
+// and is switched off (alpha = 0) after t_off.
+BOOST_AUTO_TEST_CASE(feedback_damping_removes_kinetic_energy_until_t_off) {
+  auto run = [](double gain, double& ke_mid, double& alpha_mid, double& alpha_end) {
+    MpmConfig cfg;
+    cfg.grid.dx = 1e-3;
+    cfg.grid.x0 = cfg.grid.y0 = -4e-3;
+    cfg.grid.nx = 30;
+    cfg.grid.ny = 12;
+    cfg.material = elastic();
+    cfg.numerics.pic_fraction = 0.0;
+    cfg.damping.gain = gain;
+    cfg.damping.t_off = 2e-4;
+    cfg.damping.v_ref = 1.0;
+    MpmProblem pb(cfg);
+    fill_rect(pb, 1e-3, 0.0, 20e-3, 0.0, 2e-3, false,
+              [](double x, double) { return Eigen::Vector2d(std::sin(M_PI * x / 20e-3), 0.0); });
+    pb.setup();
+    while (pb.time() < 1.9e-4) pb.step();
+    ke_mid = pb.kinetic_energy() + pb.strain_energy();
+    alpha_mid = pb.feedback_alpha();
+    while (pb.time() < 3e-4) pb.step();
+    alpha_end = pb.feedback_alpha();
+  };
+  double e0, a0, z0, e1, a1, z1;
+  run(0.0, e0, a0, z0);
+  run(1e9, e1, a1, z1);
+  std::printf("feedback damping: energy at 0.19 ms %.4g J/m without, %.4g J/m with (alpha %.3g 1/s)\n", e0, e1, a1);
+  BOOST_TEST(a0 == 0.0);
+  BOOST_TEST(a1 > 0.0);
+  BOOST_TEST(e1 < 0.5 * e0);
+  BOOST_TEST(z1 == 0.0);
+}

@@ -133,7 +133,7 @@ std::vector<ParamSpec> cutting_params() {
       make("output_interval", Dim::time, "force-history interval (0: total_time/400)", 0.0, 0.0, kInf),
       make("steady_start_fraction", Dim::dimensionless, "steady window starts at this fraction of the run", 0.5,
            0.0, 1.0),
-      make("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 0.0, 0.0,
+      make("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 100.0, 0.0,
            1e9),
       make("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 1.0, false),
       make("contact_gap_factor", Dim::dimensionless, "contact when nodal centres of mass are closer than this * dx",

@@ -21,7 +21,7 @@ struct CuttingSetup {
   double chip_room_factor = 12.0;    // grid height above the cut plane, in h
   double particles_through_chip = 15.0;
   double speed = 2.0, ramp_fraction = 0.3, total_time = 8e-3;
-  double feedback_gain = 0.0;        // dimensionless: d(alpha)/dt = gain / t_ramp^2 * KE / (M V^2 / 2)
+  double feedback_gain = 100.0;      // dimensionless: d(alpha)/dt = gain / t_ramp^2 * KE / (M V^2 / 2)
   HyperelasticJ2 material;
   double G_c = 2000.0, sigma_c = 40e6;
   TractionLawType law = TractionLawType::cubic;

@@ -144,56 +144,40 @@ int MpmProblem::field_of(double xp, double yp, int side_p, double xi, double yi)
   return xc <= c.x_end ? 1 : 0;
 }
 
-void MpmProblem::compute_shapes() {
+bool MpmProblem::compute_shape(std::size_t p) {
   const auto& g = cfg_.grid;
-  const long np = static_cast<long>(x_.size());
   const bool crack = cfg_.crack.enabled;
-  long frozen = 0;
-#pragma omp parallel for schedule(static) reduction(+ : frozen) num_threads(nthreads_)
-  for (long pl = 0; pl < np; ++pl) {
-    const auto p = static_cast<std::size_t>(pl);
-    if (frozen_[p]) {
-      ++frozen;
-      continue;
-    }
-    const int i0 = ugimp_axis(x_[p], g.x0, g.dx, lp_, &wx_[3 * p], &dwx_[3 * p]);
-    const int j0 = ugimp_axis(y_[p], g.y0, g.dx, lp_, &wy_[3 * p], &dwy_[3 * p]);
-    if (i0 < 0 || j0 < 0 || i0 + 2 > g.nx || j0 + 2 > g.ny || !std::isfinite(x_[p]) || !std::isfinite(y_[p])) {
-      frozen_[p] = 1;  // left the grid: it stops interacting (reported by frozen())
-      ++frozen;
-      continue;
-    }
-    i0_[p] = i0;
-    j0_[p] = j0;
-    // fast path: all three node rows on the particle's side of the crack line (or no crack)
-    const double ylo = g.y0 + j0 * g.dx, yhi = ylo + 2.0 * g.dx;
-    const std::uint8_t uniform =
-        rigid_[p] ? kRigid : std::uint8_t{0};
-    const bool same_side = !crack || rigid_[p] || (side_[p] == 1 ? ylo > cfg_.crack.y : yhi <= cfg_.crack.y);
-    if (same_side) {
-      for (int q = 0; q < 9; ++q) fid_[9 * p + static_cast<std::size_t>(q)] = uniform;
-      continue;
-    }
-    for (int b = 0; b < 3; ++b) {
-      for (int a = 0; a < 3; ++a) {
-        std::uint8_t f = 0;
-        if (rigid_[p]) {
-          f = kRigid;
-        } else if (crack) {
-          f = static_cast<std::uint8_t>(
-              field_of(x_[p], y_[p], side_[p], g.x0 + (i0 + a) * g.dx, g.y0 + (j0 + b) * g.dx));
-        }
-        fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] = f;
-      }
+  if (frozen_[p]) return false;
+  const int i0 = ugimp_axis(x_[p], g.x0, g.dx, lp_, &wx_[3 * p], &dwx_[3 * p]);
+  const int j0 = ugimp_axis(y_[p], g.y0, g.dx, lp_, &wy_[3 * p], &dwy_[3 * p]);
+  if (i0 < 0 || j0 < 0 || i0 + 2 > g.nx || j0 + 2 > g.ny || !std::isfinite(x_[p]) || !std::isfinite(y_[p])) {
+    frozen_[p] = 1;  // left the grid: it stops interacting (reported by frozen())
+    return false;
+  }
+  i0_[p] = i0;
+  j0_[p] = j0;
+  // fast path: all three node rows on the particle's side of the crack line (or no crack)
+  const double ylo = g.y0 + j0 * g.dx, yhi = ylo + 2.0 * g.dx;
+  const std::uint8_t uniform = rigid_[p] ? kRigid : std::uint8_t{0};
+  const bool same_side = !crack || rigid_[p] || (side_[p] == 1 ? ylo > cfg_.crack.y : yhi <= cfg_.crack.y);
+  if (same_side) {
+    for (int q = 0; q < 9; ++q) fid_[9 * p + static_cast<std::size_t>(q)] = uniform;
+    return true;
+  }
+  for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < 3; ++a) {
+      fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] = static_cast<std::uint8_t>(
+          field_of(x_[p], y_[p], side_[p], g.x0 + (i0 + a) * g.dx, g.y0 + (j0 + b) * g.dx));
     }
   }
-  frozen_count_ = frozen;
+  return true;
 }
 
 void MpmProblem::particles_to_grid() {
   const long np = static_cast<long>(x_.size());
   const Eigen::Vector2d grav = cfg_.gravity;
   const std::size_t nsz = nodes_.size();
+  long frozen = 0;
 #pragma omp parallel num_threads(nthreads_)
   {
     int tid = 0;
@@ -202,10 +186,13 @@ void MpmProblem::particles_to_grid() {
 #endif
     std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
     std::fill(buf.begin(), buf.end(), NodeData{});
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) reduction(+ : frozen)
     for (long pl = 0; pl < np; ++pl) {
       const auto p = static_cast<std::size_t>(pl);
-      if (frozen_[p]) continue;
+      if (!compute_shape(p)) {
+        ++frozen;
+        continue;
+      }
       const double m = mass_[p];
       const bool rig = rigid_[p] != 0;
       const double v0 = vol0_[p];
@@ -252,6 +239,7 @@ void MpmProblem::particles_to_grid() {
       nodes_[i] = acc;
     }
   }
+  frozen_count_ = frozen;
 }
 
 template <class F>
@@ -523,7 +511,7 @@ Eigen::Vector2d MpmProblem::field_velocity(const Eigen::Vector2d& pt, int side) 
 void MpmProblem::move_crack_surfaces() {
   if (!cfg_.crack.enabled) return;
   const long ns = static_cast<long>(crack_.xc.size());
-#pragma omp parallel for schedule(static) num_threads(nthreads_)
+#pragma omp parallel for schedule(static) num_threads(nthreads_) if (ns > 2000)
   for (long kl = 0; kl < ns; ++kl) {
     const auto k = static_cast<std::size_t>(kl);
     const Eigen::Vector2d vt = field_velocity(crack_.top[k], 1);
@@ -538,8 +526,7 @@ void MpmProblem::step() {
   if (cfg_.numerics.sort_interval > 0 && steps_ > 0 && steps_ % cfg_.numerics.sort_interval == 0) {
     sort_particles();
   }
-  compute_shapes();
-  particles_to_grid();
+  particles_to_grid();  // computes the shape functions too
   cohesive_forces();
   grid_update();
   grid_to_particles();

@@ -156,7 +156,7 @@ private:
     double m, px, py, fx, fy, mx, my;
   };
   int field_of(double xp, double yp, int side_p, double xi, double yi) const;
-  void compute_shapes();
+  bool compute_shape(std::size_t p);  // false: particle frozen (off the grid)
   void particles_to_grid();
   void cohesive_forces();
   void grid_update();

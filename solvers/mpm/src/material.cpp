@@ -31,6 +31,12 @@ inline double cbrt_near_one(double r) {
   y -= (y * y * y - r) / (3.0 * y * y);
   return y;
 }
+// jf^(-1/3) without division for |jf - 1| < 2e-3 (binomial series to e^5, error ~ e^6 < 1e-16).
+inline double inv_cbrt_near_one(double jf) {
+  const double e = jf - 1.0;
+  if (std::fabs(e) > 2e-3) return 1.0 / std::cbrt(jf);
+  return 1.0 + e * (-1.0 / 3.0 + e * (2.0 / 9.0 + e * (-14.0 / 81.0 + e * (35.0 / 243.0 + e * (-91.0 / 729.0)))));
+}
 }  // namespace
 
 Eigen::Matrix3d update_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& f, double J,
@@ -62,7 +68,7 @@ Eigen::Matrix3d update_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& 
 double update_stress_plane_strain(const HyperelasticJ2& mat, const Eigen::Matrix2d& l, double J, double b[4],
                                   double& alpha, double tau[4]) {
   const double f00 = 1.0 + l(0, 0), f01 = l(0, 1), f10 = l(1, 0), f11 = 1.0 + l(1, 1);
-  const double c = cbrt_near_one(1.0 / (f00 * f11 - f01 * f10));
+  const double c = inv_cbrt_near_one(f00 * f11 - f01 * f10);
   const double a00 = c * f00, a01 = c * f01, a10 = c * f10, a11 = c * f11;
   // be = fbar B fbar^T, B symmetric
   const double t00 = a00 * b[0] + a01 * b[1], t01 = a00 * b[1] + a01 * b[2];

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "cutbench/mpm/coverage.hpp"
 #include "cutbench/mpm/material.hpp"
 #include "cutbench/mpm/problem.hpp"
 #include "cutbench/mpm/shape.hpp"
@@ -274,4 +275,35 @@ BOOST_AUTO_TEST_CASE(plane_strain_kernel_matches_generic_update) {
   }
   BOOST_TEST(st.alpha > 0.01);  // it did yield
   BOOST_TEST(maxdiff < 1e-6 * mat.G);
+}
+
+// Fig 2 metric: an affinely deformed lattice fills space exactly; a missing particle is a hole.
+BOOST_AUTO_TEST_CASE(domain_coverage_metric) {
+  const double s = 1.0;
+  Eigen::Matrix2d F;
+  F << 1.3, 0.4, -0.2, 0.9;
+  std::vector<double> x, y, fxx, fxy, fyx, fyy;
+  for (int j = 0; j < 10; ++j) {
+    for (int i = 0; i < 10; ++i) {
+      const Eigen::Vector2d X((i + 0.5) * s, (j + 0.5) * s), xx = F * X;
+      x.push_back(xx.x());
+      y.push_back(xx.y());
+      fxx.push_back(F(0, 0));
+      fxy.push_back(F(0, 1));
+      fyx.push_back(F(1, 0));
+      fyy.push_back(F(1, 1));
+    }
+  }
+  const DomainCoverage full = domain_coverage(x, y, fxx, fxy, fyx, fyy, {}, s, 16);
+  BOOST_TEST(full.particles == 100u);
+  BOOST_TEST(full.gap_fraction < 0.01);
+  BOOST_TEST(full.overlap_fraction < 0.01);
+  std::vector<bool> use(100, true);
+  use[55] = false;  // interior hole
+  const DomainCoverage hole = domain_coverage(x, y, fxx, fxy, fyx, fyy, use, s, 16);
+  BOOST_TEST(hole.gap_fraction == 1.0 / 99.0, tt::tolerance(0.15));
+  // domains not deformed with the positions (F = I while positions sheared): gaps and overlaps
+  std::vector<double> one(100, 1.0), zero(100, 0.0);
+  const DomainCoverage bad = domain_coverage(x, y, one, zero, zero, one, {}, s, 16);
+  BOOST_TEST(bad.gap_fraction + bad.overlap_fraction > 0.1);
 }

@@ -31,6 +31,8 @@ void MpmProblem::add_particle(double x, double y, double volume, bool rigid, dou
   if (setup_done_) throw std::logic_error("MpmProblem::add_particle after setup()");
   x_.push_back(x);
   y_.push_back(y);
+  X0_.push_back(x);
+  Y0_.push_back(y);
   vx_.push_back(rigid ? 0.0 : vx);
   vy_.push_back(rigid ? 0.0 : vy);
   vol0_.push_back(volume);
@@ -557,7 +559,7 @@ void MpmProblem::sort_particles() {
     for (std::size_t q = 0; q < np; ++q) bscratch_[q] = v[perm_[q]];
     v.swap(bscratch_);
   };
-  for (auto* v : {&x_, &y_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_, &bxx_, &bxy_,
+  for (auto* v : {&x_, &y_, &X0_, &Y0_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_, &bxx_, &bxy_,
                   &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_}) {
     apply_d(*v);
   }

@@ -137,6 +137,8 @@ public:
   std::size_t id(std::size_t p) const { return id_[p]; }
   bool rigid(std::size_t p) const { return rigid_[p] != 0; }
   Eigen::Vector2d position(std::size_t p) const { return {x_[p], y_[p]}; }
+  Eigen::Vector2d reference_position(std::size_t p) const { return {X0_[p], Y0_[p]}; }
+  bool above_crack(std::size_t p) const { return side_[p] != 0; }  // side label (no crack: true)
   Eigen::Vector2d velocity(std::size_t p) const { return {vx_[p], vy_[p]}; }
   double mass(std::size_t p) const { return mass_[p]; }
   double volume0(std::size_t p) const { return vol0_[p]; }
@@ -179,7 +181,7 @@ private:
   bool setup_done_ = false;
 
   // particles (structure of arrays)
-  std::vector<double> x_, y_, vx_, vy_, mass_, vol0_, J_, alpha_;
+  std::vector<double> x_, y_, X0_, Y0_, vx_, vy_, mass_, vol0_, J_, alpha_;
   std::vector<double> Fxx_, Fxy_, Fyx_, Fyy_;
   std::vector<double> bxx_, bxy_, byy_, bzz_;  // isochoric elastic left Cauchy-Green
   std::vector<double> txx_, txy_, tyy_, tzz_;  // Kirchhoff stress

@@ -307,3 +307,40 @@ BOOST_AUTO_TEST_CASE(domain_coverage_metric) {
   const DomainCoverage bad = domain_coverage(x, y, one, zero, zero, one, {}, s, 16);
   BOOST_TEST(bad.gap_fraction + bad.overlap_fraction > 0.1);
 }
+
+// Position updates (EQUATIONS A4) in free fall under gravity: the 2nd-order update integrates the
+// constant acceleration exactly, the 0th-order (standard MPM) one overshoots by g dt t / 2.
+BOOST_AUTO_TEST_CASE(position_update_orders_in_free_fall) {
+  const double g = 1000.0;
+  for (double pic : {0.0, 1.0}) {
+    double err[3];
+    double dt = 0.0, t = 0.0;
+    for (int order = 0; order <= 2; ++order) {
+      MpmConfig cfg;
+      cfg.grid.dx = 1e-3;
+      cfg.grid.x0 = cfg.grid.y0 = -20e-3;
+      cfg.grid.nx = cfg.grid.ny = 30;
+      cfg.material = elastic();
+      cfg.numerics.pic_fraction = pic;
+      cfg.numerics.position_order = order;
+      cfg.gravity = Eigen::Vector2d(0.0, -g);
+      MpmProblem pb(cfg);
+      fill_rect(pb, 1e-3, -2e-3, 2e-3, -2e-3, 2e-3, false);
+      pb.setup();
+      double y0 = 0.0;
+      for (std::size_t p = 0; p < pb.size(); ++p) y0 += pb.position(p).y();
+      for (int k = 0; k < 400; ++k) pb.step();
+      double y = 0.0;
+      for (std::size_t p = 0; p < pb.size(); ++p) y += pb.position(p).y();
+      const double n = static_cast<double>(pb.size());
+      dt = pb.dt();
+      t = pb.time();
+      err[order] = (y - y0) / n + 0.5 * g * t * t;  // mean displacement minus the exact -g t^2/2
+    }
+    std::printf("free fall (PIC fraction %.0f), t = %.3g s: position error order 0: %.3e m (expected -g dt t/2 = "
+                "%.3e), order 1: %.3e m, order 2: %.3e m\n",
+                pic, t, err[0], -0.5 * g * dt * t, err[1], err[2]);
+    BOOST_TEST(err[0] == -0.5 * g * dt * t, tt::tolerance(1e-5));
+    BOOST_TEST(std::fabs(err[2]) < 1e-5 * std::fabs(err[0]));  // round-off only
+  }
+}

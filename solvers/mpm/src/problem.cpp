@@ -100,6 +100,7 @@ void MpmProblem::setup() {
   tbuf_.assign(static_cast<std::size_t>(nthreads_), std::vector<NodeData>(nodes_.size(), NodeData{}));
   vnew_.assign(nodes_.size(), Eigen::Vector2d::Zero());
   acc_.assign(nodes_.size(), Eigen::Vector2d::Zero());
+  vstrain_.assign(nodes_.size(), Eigen::Vector2d::Zero());
   imp_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   imp_below_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   ke_.assign(static_cast<std::size_t>(nn_), 0.0);
@@ -301,35 +302,18 @@ void MpmProblem::cohesive_forces() {
   }
 }
 
-void MpmProblem::grid_update() {
+void MpmProblem::resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const bool has[2], const Eigen::Vector2d& V,
+                                  Eigen::Vector2d& imp, Eigen::Vector2d& impb) const {
   const double dt = dt_;
-  const double alpha = alpha_fb_;
-  const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
   const auto& ct = cfg_.contact;
   const double gapmax = ct.gap_factor * cfg_.grid.dx;
   const bool crack = cfg_.crack.enabled;
-  const double yc = cfg_.crack.y;
   const auto nnz = static_cast<std::size_t>(nn_);
-#pragma omp parallel for schedule(static) num_threads(nthreads_)
-  for (long nl = 0; nl < nn_; ++nl) {
-    const auto n = static_cast<std::size_t>(nl);
-    const int i = static_cast<int>(nl % nnx_);
-    const double yn = cfg_.grid.y0 + static_cast<double>(nl / nnx_) * cfg_.grid.dx;
-    const int node_side = (!crack || yn > yc) ? 1 : 0;
-    Eigen::Vector2d vold[2], p[2];
-    bool has[2];
-    for (int f = 0; f < 2; ++f) {
-      NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
-      has[f] = nd.m > mmin_;
-      if (!has[f]) {
-        nd.m = 0.0;
-        vold[f].setZero();
-        p[f].setZero();
-        continue;
-      }
-      vold[f] = Eigen::Vector2d(nd.px, nd.py) / nd.m;
-      p[f] = Eigen::Vector2d(nd.px + (nd.fx - alpha * nd.px) * dt, nd.py + (nd.fy - alpha * nd.py) * dt);
-    }
+  const int i = static_cast<int>(n % static_cast<std::size_t>(nnx_));
+  const double yn = cfg_.grid.y0 + static_cast<double>(n / static_cast<std::size_t>(nnx_)) * cfg_.grid.dx;
+  const int node_side = (!crack || yn > cfg_.crack.y) ? 1 : 0;
+  imp.setZero();
+  impb.setZero();
     // crack contact (frictionless) between the two sides when the crack is closed
     if (crack && has[0] && has[1]) {
       const int fa = node_side == 1 ? 0 : 1;  // field holding material from above the crack
@@ -344,7 +328,6 @@ void MpmProblem::grid_update() {
       }
     }
     // rigid-body contact with prescribed normals
-    Eigen::Vector2d imp = Eigen::Vector2d::Zero(), impb = Eigen::Vector2d::Zero();
     const NodeData& rd = nodes_[kRigid * nnz + n];
     if (rd.m > mmin_) {
       const Eigen::Vector2d cr(rd.mx / rd.m, rd.my / rd.m);
@@ -372,6 +355,33 @@ void MpmProblem::grid_update() {
         if (mat_side == 0) impb += dp;
       }
     }
+}
+
+void MpmProblem::grid_update() {
+  const double dt = dt_;
+  const double alpha = alpha_fb_;
+  const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
+  const auto& ct = cfg_.contact;
+  const auto nnz = static_cast<std::size_t>(nn_);
+#pragma omp parallel for schedule(static) num_threads(nthreads_)
+  for (long nl = 0; nl < nn_; ++nl) {
+    const auto n = static_cast<std::size_t>(nl);
+    Eigen::Vector2d vold[2], p[2];
+    bool has[2];
+    for (int f = 0; f < 2; ++f) {
+      NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
+      has[f] = nd.m > mmin_;
+      if (!has[f]) {
+        nd.m = 0.0;
+        vold[f].setZero();
+        p[f].setZero();
+        continue;
+      }
+      vold[f] = Eigen::Vector2d(nd.px, nd.py) / nd.m;
+      p[f] = Eigen::Vector2d(nd.px + (nd.fx - alpha * nd.px) * dt, nd.py + (nd.fy - alpha * nd.py) * dt);
+    }
+    Eigen::Vector2d imp, impb;
+    resolve_contacts(n, p, has, V, imp, impb);
     imp_[n] = imp;
     imp_below_[n] = impb;
     // fixed nodes
@@ -420,13 +430,56 @@ void MpmProblem::grid_update() {
   }
 }
 
+void MpmProblem::update_strain(std::size_t p, const Eigen::Matrix2d& L) {
+  const Eigen::Matrix2d l = L * dt_;
+  const double F00 = Fxx_[p], F01 = Fxy_[p], F10 = Fyx_[p], F11 = Fyy_[p];
+  Fxx_[p] = F00 + l(0, 0) * F00 + l(0, 1) * F10;
+  Fxy_[p] = F01 + l(0, 0) * F01 + l(0, 1) * F11;
+  Fyx_[p] = F10 + l(1, 0) * F00 + l(1, 1) * F10;
+  Fyy_[p] = F11 + l(1, 0) * F01 + l(1, 1) * F11;
+  const double J = Fxx_[p] * Fyy_[p] - Fxy_[p] * Fyx_[p];
+  J_[p] = J;
+  double b[4] = {bxx_[p], bxy_[p], byy_[p], bzz_[p]};
+  double tau[4];
+  update_stress_plane_strain(cfg_.material, l, J, b, alpha_[p], tau);
+  bxx_[p] = b[0];
+  bxy_[p] = b[1];
+  byy_[p] = b[2];
+  bzz_[p] = b[3];
+  txx_[p] = tau[0];
+  txy_[p] = tau[1];
+  tyy_[p] = tau[2];
+  tzz_[p] = tau[3];
+}
+
+namespace {
+// Velocity gradient sum_i v_i (x) grad S_i over a particle's 9 nodes from a nodal velocity array.
+template <class Idx>
+inline Eigen::Matrix2d velocity_gradient(const double* wx, const double* wy, const double* dwx, const double* dwy,
+                                         const std::vector<Eigen::Vector2d>& vel, Idx&& node_index) {
+  Eigen::Matrix2d L = Eigen::Matrix2d::Zero();
+  for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < 3; ++a) {
+      if (wx[a] * wy[b] <= 0.0) continue;
+      const Eigen::Vector2d& v = vel[node_index(a, b)];
+      const double gx = dwx[a] * wy[b], gy = wx[a] * dwy[b];
+      L(0, 0) += v.x() * gx;
+      L(0, 1) += v.x() * gy;
+      L(1, 0) += v.y() * gx;
+      L(1, 1) += v.y() * gy;
+    }
+  }
+  return L;
+}
+}  // namespace
+
 void MpmProblem::grid_to_particles() {
   const long np = static_cast<long>(x_.size());
   const double dt = dt_;
   const double beta = cfg_.numerics.pic_fraction;
   const int order = cfg_.numerics.position_order;
+  const bool musl = cfg_.numerics.musl;
   const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
-  const HyperelasticJ2 mat = cfg_.material;
   const auto nnz = static_cast<std::size_t>(nn_);
 #pragma omp parallel for schedule(static) num_threads(nthreads_)
   for (long pl = 0; pl < np; ++pl) {
@@ -439,26 +492,18 @@ void MpmProblem::grid_to_particles() {
       vy_[p] = V.y();
       continue;
     }
+    auto idx = [&](int a, int b) {
+      return fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz +
+             static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_);
+    };
     Eigen::Vector2d vg = Eigen::Vector2d::Zero(), ag = Eigen::Vector2d::Zero();
-    Eigen::Matrix2d L = Eigen::Matrix2d::Zero();
     for (int b = 0; b < 3; ++b) {
-      const double wyb = wy_[3 * p + static_cast<std::size_t>(b)];
-      const double dwyb = dwy_[3 * p + static_cast<std::size_t>(b)];
       for (int a = 0; a < 3; ++a) {
-        const double wxa = wx_[3 * p + static_cast<std::size_t>(a)];
-        const double s = wxa * wyb;
+        const double s = wx_[3 * p + static_cast<std::size_t>(a)] * wy_[3 * p + static_cast<std::size_t>(b)];
         if (s <= 0.0) continue;
-        const int n = (i0_[p] + a) + (j0_[p] + b) * nnx_;
-        const std::size_t k = fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz + static_cast<std::size_t>(n);
-        const Eigen::Vector2d& v = vnew_[k];
-        vg += s * v;
+        const std::size_t k = idx(a, b);
+        vg += s * vnew_[k];
         ag += s * acc_[k];
-        const double gx = dwx_[3 * p + static_cast<std::size_t>(a)] * wyb;
-        const double gy = wxa * dwyb;
-        L(0, 0) += v.x() * gx;
-        L(0, 1) += v.x() * gy;
-        L(1, 0) += v.y() * gx;
-        L(1, 1) += v.y() * gy;
       }
     }
     const Eigen::Vector2d vp(vx_[p], vy_[p]);
@@ -476,28 +521,92 @@ void MpmProblem::grid_to_particles() {
     y_[p] += dx.y();
     vx_[p] = vnew.x();
     vy_[p] = vnew.y();
-    // deformation and stress (USL: gradient of the updated grid velocity)
-    const Eigen::Matrix2d l = L * dt;
-    const double F00 = Fxx_[p], F01 = Fxy_[p], F10 = Fyx_[p], F11 = Fyy_[p];
-    Fxx_[p] = F00 + l(0, 0) * F00 + l(0, 1) * F10;
-    Fxy_[p] = F01 + l(0, 0) * F01 + l(0, 1) * F11;
-    Fyx_[p] = F10 + l(1, 0) * F00 + l(1, 1) * F10;
-    Fyy_[p] = F11 + l(1, 0) * F01 + l(1, 1) * F11;
-    const double J = Fxx_[p] * Fyy_[p] - Fxy_[p] * Fyx_[p];
-    J_[p] = J;
-    double b[4] = {bxx_[p], bxy_[p], byy_[p], bzz_[p]};
-    double tau[4];
-    update_stress_plane_strain(mat, l, J, b, alpha_[p], tau);
-    bxx_[p] = b[0];
-    bxy_[p] = b[1];
-    byy_[p] = b[2];
-    bzz_[p] = b[3];
-    txx_[p] = tau[0];
-    txy_[p] = tau[1];
-    tyy_[p] = tau[2];
-    tzz_[p] = tau[3];
+    if (!musl) {  // USL: gradient of the updated grid velocities
+      update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vnew_, idx));
+    }
   }
   rigid_disp_ += V * dt;
+  if (!musl) return;
+  remap_momenta();
+#pragma omp parallel for schedule(static) num_threads(nthreads_)
+  for (long pl = 0; pl < np; ++pl) {
+    const auto p = static_cast<std::size_t>(pl);
+    if (frozen_[p] || rigid_[p]) continue;
+    auto idx = [&](int a, int b) {
+      return fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz +
+             static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_);
+    };
+    update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vstrain_, idx));
+  }
+}
+
+void MpmProblem::remap_momenta() {
+  const long np = static_cast<long>(x_.size());
+  const Eigen::Vector2d V = cfg_.tool.at(time_ + dt_);
+  const auto nnz = static_cast<std::size_t>(nn_);
+  const long nfield = 2 * static_cast<long>(nnz);
+#pragma omp parallel num_threads(nthreads_)
+  {
+    int tid = 0;
+#ifdef _OPENMP
+    tid = omp_get_thread_num();
+#endif
+    std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
+    for (long i = 0; i < nfield; ++i) {
+      buf[static_cast<std::size_t>(i)].px = 0.0;
+      buf[static_cast<std::size_t>(i)].py = 0.0;
+    }
+#pragma omp for schedule(static)
+    for (long pl = 0; pl < np; ++pl) {
+      const auto p = static_cast<std::size_t>(pl);
+      if (frozen_[p] || rigid_[p]) continue;
+      const double m = mass_[p];
+      for (int b = 0; b < 3; ++b) {
+        for (int a = 0; a < 3; ++a) {
+          const double s = wx_[3 * p + static_cast<std::size_t>(a)] * wy_[3 * p + static_cast<std::size_t>(b)];
+          if (s <= 0.0) continue;
+          NodeData& nd = buf[fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz +
+                             static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_)];
+          nd.px += m * s * vx_[p];
+          nd.py += m * s * vy_[p];
+        }
+      }
+    }
+#pragma omp for schedule(static)
+    for (long il = 0; il < nfield; ++il) {
+      const auto i = static_cast<std::size_t>(il);
+      double px = tbuf_[0][i].px, py = tbuf_[0][i].py;
+      for (std::size_t t = 1; t < tbuf_.size(); ++t) {
+        px += tbuf_[t][i].px;
+        py += tbuf_[t][i].py;
+      }
+      nodes_[i].px = px;
+      nodes_[i].py = py;
+    }
+#pragma omp for schedule(static)
+    for (long nl = 0; nl < nn_; ++nl) {
+      const auto n = static_cast<std::size_t>(nl);
+      Eigen::Vector2d pm[2], imp, impb;
+      bool has[2];
+      for (int f = 0; f < 2; ++f) {
+        const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
+        has[f] = nd.m > mmin_;
+        pm[f] = has[f] ? Eigen::Vector2d(nd.px, nd.py) : Eigen::Vector2d::Zero();
+      }
+      resolve_contacts(n, pm, has, V, imp, impb);
+      const int fm = fixed_[n];
+      for (int f = 0; f < 2; ++f) {
+        const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
+        if (!has[f]) {
+          vstrain_[k].setZero();
+          continue;
+        }
+        if (fm & 1) pm[f].x() = 0.0;
+        if (fm & 2) pm[f].y() = 0.0;
+        vstrain_[k] = pm[f] / nodes_[k].m;
+      }
+    }
+  }
 }
 
 Eigen::Vector2d MpmProblem::field_velocity(const Eigen::Vector2d& pt, int side) const {

@@ -30,6 +30,10 @@ struct GridSpec {
 struct Numerics {
   double pic_fraction = 1.0;  // PIC damping fraction: 1 = pure PIC (default), 0 = pure FLIP
   int position_order = 2;     // 0: x += dt v_g(n+1); 1: adds the PIC term; 2: full Eq. 10
+  // Strain update: false = USL (L from the updated grid velocities); true = MUSL (the updated
+  // particle momenta are re-extrapolated to the grid with the same shape functions, contact and
+  // boundary conditions re-applied, and L taken from those velocities: NairnMPM's strain-last).
+  bool musl = false;
   double cfl = 0.4;           // dt = cfl * dx / c_p
   int sort_interval = 50;     // steps between particle sorts by cell (0 = never)
   double min_mass_fraction = 1e-8;  // nodes lighter than this times a particle mass are empty
@@ -163,6 +167,10 @@ private:
   void cohesive_forces();
   void grid_update();
   void grid_to_particles();
+  void remap_momenta();  // MUSL: particle momenta -> grid -> contact/BCs -> vstrain_
+  void update_strain(std::size_t p, const Eigen::Matrix2d& L);
+  void resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const bool has[2], const Eigen::Vector2d& V,
+                        Eigen::Vector2d& imp, Eigen::Vector2d& impb) const;
   void move_crack_surfaces();
   void sort_particles();
   Eigen::Vector2d field_velocity(const Eigen::Vector2d& pt, int side) const;
@@ -201,7 +209,7 @@ private:
   // grid: 3 fields (0: node's own side, 1: across the crack, 2: rigid body), nn_ nodes each
   std::vector<NodeData> nodes_;
   std::vector<std::vector<NodeData>> tbuf_;
-  std::vector<Eigen::Vector2d> vnew_, acc_;
+  std::vector<Eigen::Vector2d> vnew_, acc_, vstrain_;
   std::vector<int> fixed_;
   std::vector<Eigen::Vector2d> imp_, imp_below_;
   std::vector<double> ke_;

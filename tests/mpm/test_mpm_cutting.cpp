@@ -93,6 +93,14 @@ BOOST_AUTO_TEST_CASE(tiny_run_produces_tables_scalars_snapshots) {
               out.scalars.at("particle_steps_per_s"));
   BOOST_TEST(out.scalars.at("F_c") > 0.0);
   BOOST_TEST(out.scalars.at("frozen_particles") == 0.0);
+  // the MUSL strain update runs through the same runner
+  Values vm = v;
+  vm["strain_update"] = 1.0;
+  vm["snapshots"] = 0.0;
+  const RunOutput om = spec.run(vm, {});
+  std::printf("tiny run, MUSL: F_c = %.1f N/m\n", om.scalars.at("F_c"));
+  BOOST_TEST(om.scalars.at("F_c") > 0.0);
+  BOOST_TEST(om.snapshots.empty());
 }
 
 // Deterministic for a fixed thread count: two runs with 2 threads agree bitwise (per-thread node

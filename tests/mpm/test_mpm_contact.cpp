@@ -17,7 +17,7 @@ struct SlideResult {
 
 // An elastic block (10 x 5 mm) pressed by gravity onto a rigid plate that slides under it at
 // V = 1 m/s. While the block slips, the plate's force on it is F_t = mu F_n with F_n = m g.
-SlideResult slide(double mu, double g) {
+SlideResult slide(double mu, double g, int detection = 1) {
   const double dx = 1e-3;
   MpmConfig cfg;
   cfg.grid.dx = dx;
@@ -28,6 +28,8 @@ SlideResult slide(double mu, double g) {
   cfg.material = elastic();
   cfg.numerics.pic_fraction = 1.0;
   cfg.contact.mu = mu;
+  cfg.contact.detection = detection;
+  if (detection == 2) cfg.contact.gap_factor = 0.0;
   cfg.contact.n_above = Eigen::Vector2d(0.0, -1.0);  // from the block into the plate below
   cfg.tool.velocity = Eigen::Vector2d(1.0, 0.0);
   cfg.gravity = Eigen::Vector2d(0.0, -g);
@@ -65,14 +67,16 @@ SlideResult slide(double mu, double g) {
 
 BOOST_AUTO_TEST_CASE(block_sliding_on_rigid_plate_coulomb) {
   const double g = 2000.0;
+  for (int det : {0, 1, 2}) {
   for (double mu : {0.2, 0.5}) {
-    const SlideResult r = slide(mu, g);
-    std::printf("sliding block mu = %.2f: F_t = %.4f N/m, F_n = %.4f N/m (weight %.4f), F_t/F_n = %.4f (exact %.2f), "
+    const SlideResult r = slide(mu, g, det);
+    std::printf("sliding block (contact detection %d) mu = %.2f: F_t = %.4f N/m, F_n = %.4f N/m (weight %.4f), F_t/F_n = %.4f (exact %.2f), "
                 "block acceleration %.1f m/s^2 (mu g = %.1f)\n",
-                mu, r.Fx, r.Fy, r.weight, r.Fx / r.Fy, mu, r.accel, mu * g);
+                det, mu, r.Fx, r.Fy, r.weight, r.Fx / r.Fy, mu, r.accel, mu * g);
     BOOST_TEST(r.Fx / r.Fy == mu, tt::tolerance(0.02));
     BOOST_TEST(r.Fy == r.weight, tt::tolerance(0.05));
     BOOST_TEST(r.accel == mu * g, tt::tolerance(0.05));
+  }
   }
 }
 
@@ -135,4 +139,40 @@ BOOST_AUTO_TEST_CASE(feedback_damping_removes_kinetic_energy_until_t_off) {
   BOOST_TEST(a1 > 0.0);
   BOOST_TEST(e1 < 0.5 * e0);
   BOOST_TEST(z1 == 0.0);
+}
+
+// Contact detection: a block moving at 10 m/s toward a rigid wall 1.5 cells away. Domain-extent
+// detection (2) starts contact when the domains touch (t* = gap / v); the velocity test alone (0)
+// engages as soon as the two materials share nodes (here a cell before they touch).
+BOOST_AUTO_TEST_CASE(contact_detection_starts_when_domains_touch) {
+  const double dx = 1e-3, gap = 1.5 * dx, v = 10.0;
+  double first[3] = {-1.0, -1.0, -1.0};
+  for (int det : {0, 2}) {
+    MpmConfig cfg;
+    cfg.grid.dx = dx;
+    cfg.grid.x0 = -12 * dx;
+    cfg.grid.y0 = -4 * dx;
+    cfg.grid.nx = 20;
+    cfg.grid.ny = 12;
+    cfg.material = elastic();
+    cfg.contact.detection = det;
+    cfg.contact.gap_factor = 0.0;
+    cfg.contact.n_above = Eigen::Vector2d(1.0, 0.0);  // from the block into the wall
+    MpmProblem pb(cfg);
+    fill_rect(pb, dx, -gap - 6 * dx, -gap, 0.0, 4 * dx, false, [&](double, double) { return Eigen::Vector2d(v, 0.0); });
+    fill_rect(pb, dx, 0.0, 2 * dx, -2 * dx, 6 * dx, true);
+    pb.setup();
+    while (pb.time() < 2.0 * gap / v) {
+      pb.step();
+      if (pb.contact_forces().total.norm() > 0.0) {
+        first[det] = pb.time();
+        break;
+      }
+    }
+  }
+  const double tstar = gap / v;
+  std::printf("contact onset: detection 0 at %.3g s, detection 2 at %.3g s; domains touch at %.3g s\n", first[0],
+              first[2], tstar);
+  BOOST_TEST(first[0] < 0.5 * tstar);  // a cell early
+  BOOST_TEST(first[2] == tstar, tt::tolerance(0.05));
 }

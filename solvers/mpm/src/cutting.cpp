@@ -55,6 +55,7 @@ MpmProblem build_cutting_problem(const CuttingSetup& s, double* tool_tip_x0) {
   ct.n_above = Eigen::Vector2d(-std::cos(s.rake), -std::sin(s.rake));  // rake face
   ct.n_below = Eigen::Vector2d(0.0, 1.0);                              // bottom (clearance) face
   ct.gap_factor = s.contact_gap_factor;
+  ct.detection = s.contact_detection;
 
   cfg.tool.velocity = Eigen::Vector2d(s.speed, 0.0);
   cfg.tool.t_ramp = s.ramp_fraction * s.total_time;
@@ -139,7 +140,11 @@ std::vector<ParamSpec> cutting_params() {
       make("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 100.0, 0.0,
            1e9),
       make("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 1.0, false),
-      make("contact_gap_factor", Dim::dimensionless, "contact when nodal centres of mass are closer than this * dx",
+      make("contact_detection", Dim::dimensionless,
+           "0 = velocity test only, 1 = nodal centres of mass closer than contact_gap_factor*dx, "
+           "2 = particle domains touch (within contact_gap_factor*dx)",
+           1.0, 0.0, 2.0),
+      make("contact_gap_factor", Dim::dimensionless, "contact distance / tolerance in cells (see contact_detection)",
            1.0, 0.0, 10.0),
       make("snapshots", Dim::dimensionless, "number of particle snapshots (evenly spaced, last at the end)", 4.0, 0.0,
            1000.0),
@@ -187,6 +192,9 @@ CuttingSetup cutting_setup_from(const Values& v) {
   s.total_time = v.at("total_time");
   s.feedback_gain = v.at("feedback_gain");
   s.contact_gap_factor = v.at("contact_gap_factor");
+  const double det = v.at("contact_detection");
+  if (det != 0.0 && det != 1.0 && det != 2.0) throw InputError("contact_detection", "must be 0, 1 or 2");
+  s.contact_detection = static_cast<int>(det);
   if (s.free_crack_factor > s.precrack_factor) throw InputError("free_crack_factor", "must not exceed precrack_factor");
   if (s.precrack_factor > s.width_factor) throw InputError("precrack_factor", "must not exceed width_factor");
   return s;

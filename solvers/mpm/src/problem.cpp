@@ -16,6 +16,7 @@ namespace cutbench::mpm {
 namespace {
 constexpr int kFields = 3;
 constexpr std::uint8_t kRigid = 2;
+constexpr double kHuge = 1e300;
 }  // namespace
 
 MpmProblem::MpmProblem(MpmConfig cfg) : cfg_(std::move(cfg)) {
@@ -180,6 +181,8 @@ void MpmProblem::particles_to_grid() {
   const long np = static_cast<long>(x_.size());
   const Eigen::Vector2d grav = cfg_.gravity;
   const std::size_t nsz = nodes_.size();
+  const bool ext = cfg_.contact.detection == 2;
+  const Eigen::Vector2d na = cfg_.contact.n_above, nb = cfg_.contact.n_below;
   long frozen = 0;
 #pragma omp parallel num_threads(nthreads_)
   {
@@ -189,6 +192,12 @@ void MpmProblem::particles_to_grid() {
 #endif
     std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
     std::fill(buf.begin(), buf.end(), NodeData{});
+    if (ext) {  // max for material fields, min for the rigid field
+      for (std::size_t i = 0; i < nsz; ++i) {
+        const bool rig_field = i >= 2 * static_cast<std::size_t>(nn_);
+        buf[i].e0 = buf[i].e1 = rig_field ? kHuge : -kHuge;
+      }
+    }
 #pragma omp for schedule(static) reduction(+ : frozen)
     for (long pl = 0; pl < np; ++pl) {
       const auto p = static_cast<std::size_t>(pl);
@@ -200,6 +209,19 @@ void MpmProblem::particles_to_grid() {
       const bool rig = rigid_[p] != 0;
       const double v0 = vol0_[p];
       const double sxx = txx_[p] * v0, sxy = txy_[p] * v0, syy = tyy_[p] * v0;
+      // domain extents along the contact normals: far edge of material, near edges of the tool
+      double ea = 0.0, eb = 0.0;
+      if (ext) {
+        if (rig) {
+          ea = x_[p] * na.x() + y_[p] * na.y() - lp_ * (std::fabs(na.x()) + std::fabs(na.y()));
+          eb = x_[p] * nb.x() + y_[p] * nb.y() - lp_ * (std::fabs(nb.x()) + std::fabs(nb.y()));
+        } else {
+          const Eigen::Vector2d& nn = side_[p] ? na : nb;
+          // half-extent of the parallelogram F * square along nn: lp (|F^T nn|_1)
+          const double gx = Fxx_[p] * nn.x() + Fyx_[p] * nn.y(), gy = Fxy_[p] * nn.x() + Fyy_[p] * nn.y();
+          ea = x_[p] * nn.x() + y_[p] * nn.y() + lp_ * (std::fabs(gx) + std::fabs(gy));
+        }
+      }
       for (int b = 0; b < 3; ++b) {
         const double wyb = wy_[3 * p + static_cast<std::size_t>(b)];
         const double dwyb = dwy_[3 * p + static_cast<std::size_t>(b)];
@@ -214,6 +236,14 @@ void MpmProblem::particles_to_grid() {
           nd.m += ms;
           nd.mx += ms * x_[p];
           nd.my += ms * y_[p];
+          if (ext) {
+            if (rig) {
+              nd.e0 = std::min(nd.e0, ea);
+              nd.e1 = std::min(nd.e1, eb);
+            } else {
+              nd.e0 = std::max(nd.e0, ea);
+            }
+          }
           if (rig) continue;
           const double gx = dwx_[3 * p + static_cast<std::size_t>(a)] * wyb;
           const double gy = wxa * dwyb;
@@ -238,6 +268,11 @@ void MpmProblem::particles_to_grid() {
         acc.fy += o.fy;
         acc.mx += o.mx;
         acc.my += o.my;
+        if (ext) {
+          const bool rig_field = i >= 2 * static_cast<std::size_t>(nn_);
+          acc.e0 = rig_field ? std::min(acc.e0, o.e0) : std::max(acc.e0, o.e0);
+          acc.e1 = rig_field ? std::min(acc.e1, o.e1) : std::max(acc.e1, o.e1);
+        }
       }
       nodes_[i] = acc;
     }
@@ -336,9 +371,12 @@ void MpmProblem::resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const boo
         const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
         const int mat_side = f == 0 ? node_side : 1 - node_side;
         const Eigen::Vector2d& nrm = mat_side == 1 ? ct.n_above : ct.n_below;
-        if (gapmax > 0.0) {
+        if (ct.detection == 1 && gapmax > 0.0) {
           const Eigen::Vector2d cm(nd.mx / nd.m, nd.my / nd.m);
           if ((cr - cm).dot(nrm) > gapmax) continue;
+        } else if (ct.detection == 2) {
+          const double tool_edge = mat_side == 1 ? rd.e0 : rd.e1;
+          if (nd.e0 < tool_edge - gapmax) continue;  // domains apart
         }
         const Eigen::Vector2d dv = p[f] / nd.m - V;
         const double dvn = dv.dot(nrm);

@@ -28,6 +28,7 @@ struct CuttingSetup {
   double mu = 0.0;
   Numerics numerics;
   double contact_gap_factor = 1.0;
+  int contact_detection = 1;
   double crack_offset = 0.02;        // crack line this fraction of a cell below the node row
 };
 

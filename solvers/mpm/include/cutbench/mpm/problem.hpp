@@ -47,8 +47,13 @@ struct ContactSpec {
   // the crack line the material came from (without a crack all material is "above").
   Eigen::Vector2d n_above{0.0, -1.0};
   Eigen::Vector2d n_below{0.0, 1.0};
-  // Contact needs the nodal centres of mass of the two materials to be closer than
-  // gap_factor * dx along the normal (<= 0: velocity test only).
+  // Contact detection besides the approach test (v - V).n > 0:
+  //   0: none (velocity test only);
+  //   1: the nodal centres of mass of the two materials are closer than gap_factor * dx along n;
+  //   2: the particle domains touch: max over the material's particles at the node of the
+  //      domain's far edge along n  >=  min over the rigid particles of their near edge
+  //      - gap_factor * dx (gap_factor is then a tolerance, default 0 here).
+  int detection = 1;
   double gap_factor = 1.0;
 };
 
@@ -160,6 +165,7 @@ public:
 private:
   struct NodeData {
     double m, px, py, fx, fy, mx, my;
+    double e0, e1;  // domain extents along the contact normals (detection 2), see ContactSpec
   };
   int field_of(double xp, double yp, int side_p, double xi, double yi) const;
   bool compute_shape(std::size_t p);  // false: particle frozen (off the grid)

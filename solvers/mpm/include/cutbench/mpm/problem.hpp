@@ -2,7 +2,7 @@
 // MpmProblem: a 2D plane-strain material point method problem on a regular grid with uGIMP shape
 // functions (deal.II-like: configure -> add particles -> setup() -> step()... -> observe).
 //
-// Physics: explicit USL update with a CFL time step; neo-Hookean J2 material (material.hpp);
+// Physics: explicit USL (or MUSL) update with a CFL time step; neo-Hookean J2 material (material.hpp);
 // PIC-damped velocity update and 0th/1st/2nd-order position updates (Nairn 2015, Eqs. 8-10);
 // one rigid body made of particles moving at a prescribed (ramped) velocity, in Coulomb-friction
 // contact with the deformable material through prescribed normals; one straight explicit crack
@@ -52,7 +52,7 @@ struct ContactSpec {
   //   1: the nodal centres of mass of the two materials are closer than gap_factor * dx along n;
   //   2: the particle domains touch: max over the material's particles at the node of the
   //      domain's far edge along n  >=  min over the rigid particles of their near edge
-  //      - gap_factor * dx (gap_factor is then a tolerance, default 0 here).
+  //      - gap_factor * dx (gap_factor is then a tolerance; 0 = exact touching).
   int detection = 1;
   double gap_factor = 1.0;
 };

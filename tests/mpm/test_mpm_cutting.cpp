@@ -132,3 +132,16 @@ BOOST_AUTO_TEST_CASE(bitwise_reproducible_with_two_threads) {
   }
   BOOST_TEST(same);
 }
+
+BOOST_AUTO_TEST_CASE(bench_reports_throughput) {
+  CuttingSetup s;
+  s.particles_through_chip = 2;
+  s.width_factor = 8;
+  s.precrack_factor = 6;
+  s.chip_room_factor = 4;
+  const BenchResult r = bench_cutting(s, 5, 20);
+  std::printf("bench: %zu particles, %ld steps, %.3g particle-steps/s on %d thread(s)\n", r.particles, r.steps,
+              r.particle_steps_per_s, r.threads);
+  BOOST_TEST(r.particles > 100u);
+  BOOST_TEST(r.particle_steps_per_s > 0.0);
+}

@@ -91,6 +91,21 @@ MpmProblem build_cutting_problem(const CuttingSetup& s, double* tool_tip_x0) {
   return pb;
 }
 
+BenchResult bench_cutting(const CuttingSetup& s, long warmup, long steps) {
+  MpmProblem pb = build_cutting_problem(s);
+  pb.setup();
+  for (long k = 0; k < warmup; ++k) pb.step();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (long k = 0; k < steps; ++k) pb.step();
+  BenchResult r;
+  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.particles = pb.size();
+  r.steps = steps;
+  r.threads = pb.threads();
+  r.particle_steps_per_s = r.wall > 0.0 ? static_cast<double>(r.particles) * static_cast<double>(steps) / r.wall : 0.0;
+  return r;
+}
+
 namespace {
 ParamSpec make(const std::string& name, Dim dim, const std::string& desc, double def, double lo, double hi,
                bool lo_incl = true) {

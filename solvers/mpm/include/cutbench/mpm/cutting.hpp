@@ -39,6 +39,17 @@ MpmProblem build_cutting_problem(const CuttingSetup& s, double* tool_tip_x0 = nu
 std::vector<ParamSpec> cutting_params();
 CuttingSetup cutting_setup_from(const Values& v);
 
+// Throughput benchmark for `cutbench bench mpm`: build the cutting problem, advance `warmup`
+// steps untimed, then time `steps` steps. Wall time excludes setup.
+struct BenchResult {
+  std::size_t particles = 0;
+  long steps = 0;
+  int threads = 1;
+  double wall = 0.0;                  // s
+  double particle_steps_per_s = 0.0;
+};
+BenchResult bench_cutting(const CuttingSetup& s, long warmup, long steps);
+
 // Run a cutting case to completion and collect forces, scalars and snapshots.
 RunOutput run_cutting(const Values& params, const ProgressFn& progress);
 

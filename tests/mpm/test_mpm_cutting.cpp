@@ -67,6 +67,7 @@ BOOST_AUTO_TEST_CASE(bad_input_names_the_field) {
   }
   BOOST_CHECK_THROW(run_cutting({{"E_T", 2e9}}, {}), InputError);
   BOOST_CHECK_THROW(run_cutting({{"no_such", 1.0}}, {}), InputError);
+  BOOST_CHECK_THROW(run_cutting({{"steady_start_fraction", 0.6}, {"steady_end_fraction", 0.5}}, {}), InputError);
 }
 
 // A tiny, short run through the whole runner: the output structure the framework relies on.
@@ -96,6 +97,7 @@ BOOST_AUTO_TEST_CASE(tiny_run_produces_tables_scalars_snapshots) {
   // the MUSL strain update runs through the same runner
   Values vm = v;
   vm["strain_update"] = 1.0;
+  vm["steady_end_fraction"] = 0.75;
   vm["snapshots"] = 0.0;
   const RunOutput om = spec.run(vm, {});
   std::printf("tiny run, MUSL: F_c = %.1f N/m\n", om.scalars.at("F_c"));

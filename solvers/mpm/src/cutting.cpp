@@ -152,6 +152,8 @@ std::vector<ParamSpec> cutting_params() {
       make("output_interval", Dim::time, "force-history interval (0: total_time/400)", 0.0, 0.0, kInf),
       make("steady_start_fraction", Dim::dimensionless, "steady window starts at this fraction of the run", 0.5,
            0.0, 1.0),
+      make("steady_end_fraction", Dim::dimensionless, "steady window ends at this fraction of the run", 1.0, 0.0,
+           1.0),
       make("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 100.0, 0.0,
            1e9),
       make("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 1.0, false),
@@ -265,6 +267,9 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   spec.name = "mpm_cutting";
   spec.params = cutting_params();
   const Values v = validate_params(spec, given);
+  if (v.at("steady_end_fraction") <= v.at("steady_start_fraction")) {
+    throw InputError("steady_end_fraction", "must exceed steady_start_fraction");
+  }
   const CuttingSetup s = cutting_setup_from(v);
   double xt0 = 0.0;
   MpmProblem pb = build_cutting_problem(s, &xt0);
@@ -328,9 +333,10 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   out.tables.push_back(std::move(forces));
 
   const double t_steady = v.at("steady_start_fraction") * T;
+  const double t_steady_end = v.at("steady_end_fraction") * T;
   std::vector<double> wc, wt, wn, wg;
   for (std::size_t i = 0; i < tt.size(); ++i) {
-    if (tt[i] >= t_steady) {
+    if (tt[i] >= t_steady && tt[i] <= t_steady_end + 0.5 * out_dt) {
       wc.push_back(fc[i]);
       wt.push_back(ft[i]);
       wn.push_back(fnb[i]);
@@ -386,8 +392,9 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
     put("chip_domain_overlap_fraction", cov.overlap_fraction, "1");
   }
   out.notes.push_back("F_c, F_t: force of the tool on the material per unit width (F_t positive pushing the "
-                      "material down, the paper's sign); averages over t >= " +
-                      std::to_string(t_steady) + " s of output-interval means.");
+                      "material down, the paper's sign); averages over " +
+                      std::to_string(t_steady) + " s <= t <= " + std::to_string(t_steady_end) +
+                      " s of output-interval means.");
   out.notes.push_back("touching = mean tool-tip/crack-tip gap in the steady window below one cell (" +
                       std::to_string(dx) + " m).");
   if (pb.frozen() > 0) {

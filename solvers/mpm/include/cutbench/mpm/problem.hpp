@@ -1,0 +1,231 @@
+#pragma once
+// MpmProblem: a 2D plane-strain material point method problem on a regular grid with uGIMP shape
+// functions (deal.II-like: configure -> add particles -> setup() -> step()... -> observe).
+//
+// Physics: explicit USL (or MUSL) update with a CFL time step; neo-Hookean J2 material (material.hpp);
+// PIC-damped velocity update and 0th/1st/2nd-order position updates (Nairn 2015, Eqs. 8-10);
+// one rigid body made of particles moving at a prescribed (ramped) velocity, in Coulomb-friction
+// contact with the deformable material through prescribed normals; one straight explicit crack
+// (CRAMP-like: two velocity fields at nodes the crack separates) with cohesive segments; fixed
+// nodes; grid-kinetic-energy feedback damping.
+//
+// Threading: OpenMP over particles (per-thread node buffers reduced in thread order) and over
+// nodes. For a fixed thread count, results are bitwise reproducible. No allocation in step().
+#include <Eigen/Dense>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "cutbench/mpm/cohesive.hpp"
+#include "cutbench/mpm/material.hpp"
+
+namespace cutbench::mpm {
+
+struct GridSpec {
+  double x0 = 0.0, y0 = 0.0;  // position of node (0, 0), m
+  double dx = 1e-3;           // square cell size, m
+  int nx = 10, ny = 10;       // number of cells
+};
+
+struct Numerics {
+  double pic_fraction = 1.0;  // PIC damping fraction: 1 = pure PIC (default), 0 = pure FLIP
+  int position_order = 2;     // 0: x += dt v_g(n+1); 1: adds the PIC term; 2: full Eq. 10
+  // Strain update: false = USL (L from the updated grid velocities); true = MUSL (the updated
+  // particle momenta are re-extrapolated to the grid with the same shape functions, contact and
+  // boundary conditions re-applied, and L taken from those velocities: NairnMPM's strain-last).
+  bool musl = false;
+  double cfl = 0.4;           // dt = cfl * dx / c_p
+  int sort_interval = 50;     // steps between particle sorts by cell (0 = never)
+  double min_mass_fraction = 1e-8;  // nodes lighter than this times a particle mass are empty
+  int threads = 0;                  // OpenMP threads (0: omp_get_max_threads())
+  int min_particles_per_thread = 3000;  // fewer threads for small problems (barriers dominate)
+};
+
+struct ContactSpec {
+  double mu = 0.0;  // Coulomb friction coefficient between material and rigid body
+  // Prescribed unit normals from the cut material into the rigid body, chosen by which side of
+  // the crack line the material came from (without a crack all material is "above").
+  Eigen::Vector2d n_above{0.0, -1.0};
+  Eigen::Vector2d n_below{0.0, 1.0};
+  // Contact detection besides the approach test (v - V).n > 0:
+  //   0: none (velocity test only);
+  //   1: the nodal centres of mass of the two materials are closer than gap_factor * dx along n;
+  //   2: the particle domains touch: max over the material's particles at the node of the
+  //      domain's far edge along n  >=  min over the rigid particles of their near edge
+  //      - gap_factor * dx (gap_factor is then a tolerance; 0 = exact touching).
+  int detection = 1;
+  double gap_factor = 1.0;
+};
+
+struct CrackSpec {
+  bool enabled = false;
+  double y = 0.0;           // straight horizontal crack line (fixed in space), m
+  double x_end = 0.0;       // the explicit crack runs from -infinity to x_end, m
+  double x_begin = 0.0;     // first crack-surface segment starts here, m
+  double x_free_end = 0.0;  // segments with centre below this are traction-free, m
+  double seg_len = 0.0;     // segment length (0: dx/2), m
+  TractionLaw mode1, mode2;
+  bool cohesive = true;     // false: a traction-free crack everywhere
+};
+
+struct RigidMotion {
+  Eigen::Vector2d velocity{0.0, 0.0};  // full speed, m/s
+  double t_ramp = 0.0;                 // linear ramp 0 -> velocity over [0, t_ramp], s
+  Eigen::Vector2d at(double t) const {
+    return t_ramp > 0.0 && t < t_ramp ? Eigen::Vector2d(velocity * (t / t_ramp)) : velocity;
+  }
+};
+
+struct FeedbackDamping {
+  // d(alpha)/dt = gain * KE_grid / (M v_ref^2 / 2), alpha >= 0, applied as -alpha*p on the grid
+  // until t_off, then alpha = 0. gain in 1/s^2; gain = 0 disables it.
+  double gain = 0.0;
+  double t_off = 0.0;
+  double v_ref = 1.0;
+};
+
+struct MpmConfig {
+  GridSpec grid;
+  HyperelasticJ2 material;
+  Numerics numerics;
+  ContactSpec contact;
+  CrackSpec crack;
+  RigidMotion tool;
+  FeedbackDamping damping;
+  Eigen::Vector2d gravity{0.0, 0.0};
+  // Fixed-displacement nodes: bit 0 fixes x, bit 1 fixes y (empty function: none fixed).
+  std::function<int(double x, double y)> fixed_mask;
+  double dt = 0.0;  // 0: from the CFL condition
+};
+
+// Forces of the rigid body on the material, averaged over the last step (N per m of width).
+struct ContactForces {
+  Eigen::Vector2d total{0.0, 0.0};
+  Eigen::Vector2d below{0.0, 0.0};  // part acting on material below the crack line
+  double normal_below = 0.0;        // compressive normal force on that part (along -n_below)
+};
+
+struct CrackSurface {
+  std::vector<double> xc;           // segment centre (reference), m
+  std::vector<Eigen::Vector2d> top, bot;  // tracked surface points
+  std::vector<CohesiveState> state;
+  std::vector<std::uint8_t> free;   // traction-free from the start
+};
+
+class MpmProblem {
+public:
+  explicit MpmProblem(MpmConfig cfg);
+
+  // Particles are added before setup(). Rigid particles move with the prescribed tool velocity.
+  void add_particle(double x, double y, double volume, bool rigid, double vx = 0.0, double vy = 0.0);
+  void setup();
+  void step();
+
+  // --- observers (const; never change state) ---
+  const MpmConfig& config() const { return cfg_; }
+  double time() const { return time_; }
+  double dt() const { return dt_; }
+  long steps() const { return steps_; }
+  std::size_t size() const { return x_.size(); }
+  std::size_t num_deformable() const { return n_deformable_; }
+  long frozen() const { return frozen_count_; }
+  int threads() const { return nthreads_; }
+  const ContactForces& contact_forces() const { return forces_; }
+  double kinetic_energy() const;   // deformable particles
+  double strain_energy() const;    // deformable particles, sum of V0 W
+  Eigen::Vector2d momentum() const;       // deformable particles
+  Eigen::Vector2d grid_momentum() const;  // deformable fields on the grid after the last step
+  Eigen::Vector2d rigid_displacement() const { return rigid_disp_; }
+  double feedback_alpha() const { return alpha_fb_; }
+  const CrackSurface& crack() const { return crack_; }
+  double crack_tip_x() const;       // centre of the first intact cohesive segment (x_end if none)
+  double released_energy() const;   // J/m, sum over failed segments of (J_I + J_II) * length
+  double mode1_fraction() const;    // sum J_I len / sum (J_I + J_II) len over failed segments
+
+  // Particle access (index order changes when particles are sorted; id() is the insertion index).
+  std::size_t id(std::size_t p) const { return id_[p]; }
+  bool rigid(std::size_t p) const { return rigid_[p] != 0; }
+  Eigen::Vector2d position(std::size_t p) const { return {x_[p], y_[p]}; }
+  Eigen::Vector2d reference_position(std::size_t p) const { return {X0_[p], Y0_[p]}; }
+  bool above_crack(std::size_t p) const { return side_[p] != 0; }  // side label (no crack: true)
+  Eigen::Vector2d velocity(std::size_t p) const { return {vx_[p], vy_[p]}; }
+  double mass(std::size_t p) const { return mass_[p]; }
+  double volume0(std::size_t p) const { return vol0_[p]; }
+  Eigen::Matrix2d deformation_gradient(std::size_t p) const;
+  Eigen::Matrix3d cauchy_stress(std::size_t p) const;
+  double plastic_strain(std::size_t p) const { return alpha_[p]; }
+  double jacobian(std::size_t p) const { return J_[p]; }
+
+  // Test hooks: set a particle's velocity (by current index) before or between steps.
+  void set_velocity(std::size_t p, double vx, double vy) {
+    vx_[p] = vx;
+    vy_[p] = vy;
+  }
+
+private:
+  struct NodeData {
+    double m, px, py, fx, fy, mx, my;
+    double e0, e1;  // domain extents along the contact normals (detection 2), see ContactSpec
+  };
+  int field_of(double xp, double yp, int side_p, double xi, double yi) const;
+  bool compute_shape(std::size_t p);  // false: particle frozen (off the grid)
+  void particles_to_grid();
+  void cohesive_forces();
+  void grid_update();
+  void grid_to_particles();
+  void remap_momenta();  // MUSL: particle momenta -> grid -> contact/BCs -> vstrain_
+  void update_strain(std::size_t p, const Eigen::Matrix2d& L);
+  void resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const bool has[2], const Eigen::Vector2d& V,
+                        Eigen::Vector2d& imp, Eigen::Vector2d& impb) const;
+  void move_crack_surfaces();
+  void sort_particles();
+  Eigen::Vector2d field_velocity(const Eigen::Vector2d& pt, int side) const;
+  template <class F>
+  void for_point_nodes(const Eigen::Vector2d& pt, int side, F&& fn) const;
+
+  MpmConfig cfg_;
+  int nnx_ = 0, nny_ = 0, nn_ = 0;  // nodes per row/column, total
+  double lp_ = 0.0;
+  double dt_ = 0.0, time_ = 0.0;
+  long steps_ = 0;
+  int nthreads_ = 1;
+  double mmin_ = 0.0;
+  std::size_t n_deformable_ = 0;
+  long frozen_count_ = 0;
+  bool setup_done_ = false;
+
+  // particles (structure of arrays)
+  std::vector<double> x_, y_, X0_, Y0_, vx_, vy_, mass_, vol0_, J_, alpha_;
+  std::vector<double> Fxx_, Fxy_, Fyx_, Fyy_;
+  std::vector<double> bxx_, bxy_, byy_, bzz_;  // isochoric elastic left Cauchy-Green
+  std::vector<double> txx_, txy_, tyy_, tzz_;  // Kirchhoff stress
+  std::vector<std::uint8_t> rigid_, side_, frozen_;
+  std::vector<std::size_t> id_;
+  // shape cache: base nodes, 1D weights and derivatives, field of each of the 9 nodes
+  std::vector<int> i0_, j0_;
+  std::vector<double> wx_, wy_, dwx_, dwy_;  // 3 per particle
+  std::vector<std::uint8_t> fid_;            // 9 per particle
+  // sorting scratch
+  std::vector<std::size_t> perm_, count_;
+  std::vector<double> dscratch_;
+  std::vector<std::uint8_t> bscratch_;
+  std::vector<std::size_t> sscratch_;
+  std::vector<int> iscratch_;
+
+  // grid: 3 fields (0: node's own side, 1: across the crack, 2: rigid body), nn_ nodes each
+  std::vector<NodeData> nodes_;
+  std::vector<std::vector<NodeData>> tbuf_;
+  std::vector<Eigen::Vector2d> vnew_, acc_, vstrain_;
+  std::vector<int> fixed_;
+  std::vector<Eigen::Vector2d> imp_, imp_below_;
+  std::vector<double> ke_;
+  std::vector<double> cohesive_opening_;  // per node column: normal opening of nearest segment
+
+  CrackSurface crack_;
+  ContactForces forces_;
+  Eigen::Vector2d rigid_disp_{0.0, 0.0};
+  double alpha_fb_ = 0.0;
+  double mass_deformable_ = 0.0;
+};
+
+}  // namespace cutbench::mpm

@@ -1,0 +1,445 @@
+#include "cutbench/mpm/cutting.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/mpm/coverage.hpp"
+#include "cutbench/mpm/solver.hpp"
+
+namespace cutbench::mpm {
+
+MpmProblem build_cutting_problem(const CuttingSetup& s, double* tool_tip_x0) {
+  if (s.particles_through_chip < 2.0) throw InputError("particles_through_chip", "must be >= 2");
+  const int nchip = static_cast<int>(std::lround(s.particles_through_chip));
+  const double ps = s.h / nchip;  // particle size (4 particles per cell)
+  const double dx = 2.0 * ps;
+  const int nw = static_cast<int>(std::lround(s.width_factor * s.h / ps));
+  const int nbase = std::max(1, static_cast<int>(std::lround(s.base_factor * s.h / ps)));
+  const double W = nw * ps, base = nbase * ps;
+  const double tool_len = s.tool_length_factor * s.h, tool_hgt = s.tool_height_factor * s.h;
+
+  MpmConfig cfg;
+  cfg.material = s.material;
+  cfg.numerics = s.numerics;
+  GridSpec& g = cfg.grid;
+  g.dx = dx;
+  const int left_cells = static_cast<int>(std::ceil((tool_len + 2.0 * dx) / dx)) + 1;
+  const int below_cells = static_cast<int>(std::ceil(base / dx)) + 2;
+  const int above_cells = static_cast<int>(std::ceil(s.chip_room_factor * s.h / dx)) + 2;
+  const int right_cells = static_cast<int>(std::ceil(W / dx)) + 3;
+  g.x0 = -left_cells * dx;
+  g.y0 = -below_cells * dx;
+  g.nx = left_cells + right_cells;
+  g.ny = below_cells + above_cells;
+  // bottom of the specimen fixed in x and y (all nodes at or below it)
+  const double ybot = -base;
+  cfg.fixed_mask = [ybot, dx](double, double y) { return y <= ybot + 1e-9 * dx ? 3 : 0; };
+
+  // crack just below the node row y = 0 at the tool-tip height
+  CrackSpec& c = cfg.crack;
+  c.enabled = true;
+  c.y = -s.crack_offset * dx;
+  c.x_begin = 0.0;
+  c.x_end = std::min(W, s.precrack_factor * s.h);
+  c.x_free_end = s.free_crack_factor * s.h;
+  c.seg_len = ps;
+  c.mode1 = TractionLaw::from_toughness(s.law, s.G_c, s.sigma_c);
+  c.mode2 = c.mode1;
+
+  ContactSpec& ct = cfg.contact;
+  ct.mu = s.mu;
+  ct.n_above = Eigen::Vector2d(-std::cos(s.rake), -std::sin(s.rake));  // rake face
+  ct.n_below = Eigen::Vector2d(0.0, 1.0);                              // bottom (clearance) face
+  ct.gap_factor = s.contact_gap_factor;
+  ct.detection = s.contact_detection;
+
+  cfg.tool.velocity = Eigen::Vector2d(s.speed, 0.0);
+  cfg.tool.t_ramp = s.ramp_fraction * s.total_time;
+  if (s.feedback_gain > 0.0 && cfg.tool.t_ramp > 0.0) {
+    cfg.damping.gain = s.feedback_gain / (cfg.tool.t_ramp * cfg.tool.t_ramp);
+    cfg.damping.t_off = cfg.tool.t_ramp;
+    cfg.damping.v_ref = s.speed;
+  }
+
+  MpmProblem pb(cfg);
+  const double vol = ps * ps;
+  // specimen: x in [0, W], y in [-base, h]
+  const int nh = nchip;
+  for (int j = -nbase; j < nh; ++j) {
+    for (int i = 0; i < nw; ++i) pb.add_particle((i + 0.5) * ps, (j + 0.5) * ps, vol, false);
+  }
+  // tool: wedge behind the tip (xt, 0), bounded by the rake face, the clearance face, its height
+  // and length; particle centres on the same lattice as the specimen.
+  const double xt = -0.5 * dx;
+  const double ta = std::tan(s.rake), tc = std::tan(s.clearance);
+  const int ni = static_cast<int>(std::ceil(tool_len / ps)), nj = static_cast<int>(std::ceil(tool_hgt / ps));
+  for (int j = 0; j < nj; ++j) {
+    for (int i = 0; i < ni + nj; ++i) {
+      const double x = xt - (i + 0.5) * ps + (j + 0.5) * ps * ta;  // rows follow the rake face
+      const double y = (j + 0.5) * ps;
+      if (x > xt - y * ta + 1e-12 * ps) continue;      // ahead of the rake face
+      if (y < (xt - x) * tc - 1e-12 * ps) continue;    // below the clearance face
+      if (x < xt - tool_len) continue;
+      pb.add_particle(x, y, vol, true);
+    }
+  }
+  if (tool_tip_x0) *tool_tip_x0 = xt;
+  return pb;
+}
+
+BenchResult bench_cutting(const CuttingSetup& s, long warmup, long steps) {
+  MpmProblem pb = build_cutting_problem(s);
+  pb.setup();
+  for (long k = 0; k < warmup; ++k) pb.step();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (long k = 0; k < steps; ++k) pb.step();
+  BenchResult r;
+  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.particles = pb.size();
+  r.steps = steps;
+  r.threads = pb.threads();
+  r.particle_steps_per_s = r.wall > 0.0 ? static_cast<double>(r.particles) * static_cast<double>(steps) / r.wall : 0.0;
+  return r;
+}
+
+namespace {
+ParamSpec make(const std::string& name, Dim dim, const std::string& desc, double def, double lo, double hi,
+               bool lo_incl = true) {
+  ParamSpec p = param(name, dim, desc);
+  p.default_value = def;
+  p.min = lo;
+  p.max = hi;
+  p.min_inclusive = lo_incl;
+  return p;
+}
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kDeg = M_PI / 180.0;
+}  // namespace
+
+std::vector<ParamSpec> cutting_params() {
+  return {
+      make("h", Dim::length, "depth of cut", 0.9e-3, 0.0, kInf, false),
+      make("rake", Dim::angle, "tool rake angle alpha", 10.0 * kDeg, -30.0 * kDeg, 60.0 * kDeg),
+      make("clearance", Dim::angle, "tool clearance angle", 5.0 * kDeg, 1.0 * kDeg, 30.0 * kDeg),
+      make("K", Dim::stress, "bulk modulus", 980e6, 0.0, kInf, false),
+      make("G", Dim::stress, "shear modulus", 376e6, 0.0, kInf, false),
+      make("rho", Dim::density, "density", 1000.0, 0.0, kInf, false),
+      make("sigma_y0", Dim::stress, "initial yield stress", 25e6, 0.0, kInf, false),
+      make("E_T", Dim::stress, "tangent modulus of the tensile curve (E_p = E E_T/(E - E_T))", 100e6, 0.0, kInf),
+      make("G_c", Dim::energy_per_area, "cohesive toughness (modes I and II)", 2000.0, 0.0, kInf, false),
+      make("sigma_c", Dim::stress, "cohesive strength (modes I and II)", 40e6, 0.0, kInf, false),
+      make("traction_law", Dim::dimensionless, "0 = cubic (Eq. 3), 1 = triangular", 0.0, 0.0, 1.0),
+      make("mu", Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0),
+      make("pic_fraction", Dim::dimensionless, "PIC damping fraction (paper's 1 - beta): 1 = pure PIC", 1.0, 0.0, 1.0),
+      make("position_order", Dim::dimensionless, "position update: 0, 1 or 2 (Eq. 10)", 2.0, 0.0, 2.0),
+      make("strain_update", Dim::dimensionless, "0 = USL (updated grid velocities), 1 = MUSL (re-extrapolated momenta)",
+           0.0, 0.0, 1.0),
+      make("particles_through_chip", Dim::dimensionless, "particles through the depth of cut", 15.0, 2.0, 200.0),
+      make("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0),
+      make("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
+      make("free_crack_factor", Dim::dimensionless, "traction-free start of the crack / h", 2.0, 0.0, 200.0),
+      make("base_factor", Dim::dimensionless, "depth below the cut plane / h", 3.0, 0.25, 50.0),
+      make("tool_height_factor", Dim::dimensionless, "tool height above the cut plane / h", 4.0, 1.0, 50.0),
+      make("tool_length_factor", Dim::dimensionless, "tool length behind the tip / h", 4.0, 1.0, 50.0),
+      make("chip_room_factor", Dim::dimensionless, "grid height above the cut plane / h", 12.0, 2.0, 100.0),
+      make("speed", Dim::velocity, "cutting speed", 2.0, 0.0, 1000.0, false),
+      make("ramp_fraction", Dim::dimensionless, "fraction of the run over which the speed ramps 0 -> V", 0.3, 0.0, 1.0),
+      make("total_time", Dim::time, "simulated time", 8e-3, 0.0, kInf, false),
+      make("output_interval", Dim::time, "force-history interval (0: total_time/400)", 0.0, 0.0, kInf),
+      make("steady_start_fraction", Dim::dimensionless, "steady window starts at this fraction of the run", 0.5,
+           0.0, 1.0),
+      make("steady_end_fraction", Dim::dimensionless, "steady window ends at this fraction of the run", 1.0, 0.0,
+           1.0),
+      make("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 100.0, 0.0,
+           1e9),
+      make("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 1.0, false),
+      make("contact_detection", Dim::dimensionless,
+           "0 = velocity test only, 1 = nodal centres of mass closer than contact_gap_factor*dx, "
+           "2 = particle domains touch (within contact_gap_factor*dx)",
+           1.0, 0.0, 2.0),
+      make("contact_gap_factor", Dim::dimensionless, "contact distance / tolerance in cells (see contact_detection)",
+           1.0, 0.0, 10.0),
+      make("snapshots", Dim::dimensionless, "number of particle snapshots (evenly spaced, last at the end)", 4.0, 0.0,
+           1000.0),
+      make("threads", Dim::dimensionless, "OpenMP threads (0 = OMP_NUM_THREADS)", 0.0, 0.0, 1024.0),
+  };
+}
+
+CuttingSetup cutting_setup_from(const Values& v) {
+  CuttingSetup s;
+  s.h = v.at("h");
+  s.rake = v.at("rake");
+  s.clearance = v.at("clearance");
+  s.material.K = v.at("K");
+  s.material.G = v.at("G");
+  s.material.rho = v.at("rho");
+  s.material.sigma_y0 = v.at("sigma_y0");
+  const double E = s.material.youngs();
+  if (v.at("E_T") >= E) throw InputError("E_T", "must be below the Young's modulus E = 9KG/(3K+G)");
+  s.material.Ep = HyperelasticJ2::plastic_modulus(E, v.at("E_T"));
+  s.G_c = v.at("G_c");
+  s.sigma_c = v.at("sigma_c");
+  const double law = v.at("traction_law");
+  if (law != 0.0 && law != 1.0) throw InputError("traction_law", "must be 0 (cubic) or 1 (triangular)");
+  s.law = law == 0.0 ? TractionLawType::cubic : TractionLawType::triangular;
+  s.mu = v.at("mu");
+  s.numerics.pic_fraction = v.at("pic_fraction");
+  const double order = v.at("position_order");
+  if (order != 0.0 && order != 1.0 && order != 2.0) throw InputError("position_order", "must be 0, 1 or 2");
+  s.numerics.position_order = static_cast<int>(order);
+  const double su = v.at("strain_update");
+  if (su != 0.0 && su != 1.0) throw InputError("strain_update", "must be 0 (USL) or 1 (MUSL)");
+  s.numerics.musl = su == 1.0;
+  s.numerics.cfl = v.at("cfl");
+  s.numerics.threads = static_cast<int>(v.at("threads"));
+  s.particles_through_chip = v.at("particles_through_chip");
+  s.width_factor = v.at("width_factor");
+  s.precrack_factor = v.at("precrack_factor");
+  s.free_crack_factor = v.at("free_crack_factor");
+  s.base_factor = v.at("base_factor");
+  s.tool_height_factor = v.at("tool_height_factor");
+  s.tool_length_factor = v.at("tool_length_factor");
+  s.chip_room_factor = v.at("chip_room_factor");
+  s.speed = v.at("speed");
+  s.ramp_fraction = v.at("ramp_fraction");
+  s.total_time = v.at("total_time");
+  s.feedback_gain = v.at("feedback_gain");
+  s.contact_gap_factor = v.at("contact_gap_factor");
+  const double det = v.at("contact_detection");
+  if (det != 0.0 && det != 1.0 && det != 2.0) throw InputError("contact_detection", "must be 0, 1 or 2");
+  s.contact_detection = static_cast<int>(det);
+  if (s.free_crack_factor > s.precrack_factor) throw InputError("free_crack_factor", "must not exceed precrack_factor");
+  if (s.precrack_factor > s.width_factor) throw InputError("precrack_factor", "must not exceed width_factor");
+  return s;
+}
+
+namespace {
+Snapshot take_snapshot(const MpmProblem& pb) {
+  Snapshot s;
+  s.time = pb.time();
+  const std::size_t n = pb.size();
+  s.x.resize(n);
+  s.y.resize(n);
+  std::vector<double> seq(n), ep(n), fxx(n), fxy(n), fyx(n), fyy(n), rig(n);
+  // keep a stable particle order (insertion id) across snapshots
+  for (std::size_t p = 0; p < n; ++p) {
+    const std::size_t q = pb.id(p);
+    const Eigen::Vector2d x = pb.position(p);
+    s.x[q] = x.x();
+    s.y[q] = x.y();
+    seq[q] = pb.rigid(p) ? 0.0 : von_mises(pb.cauchy_stress(p));
+    ep[q] = pb.plastic_strain(p);
+    const Eigen::Matrix2d F = pb.deformation_gradient(p);
+    fxx[q] = F(0, 0);
+    fxy[q] = F(0, 1);
+    fyx[q] = F(1, 0);
+    fyy[q] = F(1, 1);
+    rig[q] = pb.rigid(p) ? 1.0 : 0.0;
+  }
+  s.add("sigma_eq", "Pa", std::move(seq));
+  s.add("plastic_strain", "1", std::move(ep));
+  s.add("F_xx", "1", std::move(fxx));
+  s.add("F_xy", "1", std::move(fxy));
+  s.add("F_yx", "1", std::move(fyx));
+  s.add("F_yy", "1", std::move(fyy));
+  s.add("rigid", "1", std::move(rig));
+  return s;
+}
+
+void mean_std(const std::vector<double>& v, double& mean, double& sd) {
+  mean = sd = std::nan("");
+  if (v.empty()) return;
+  double s = 0.0;
+  for (double x : v) s += x;
+  mean = s / static_cast<double>(v.size());
+  double q = 0.0;
+  for (double x : v) q += (x - mean) * (x - mean);
+  sd = std::sqrt(q / static_cast<double>(v.size()));
+}
+}  // namespace
+
+RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
+  ModelSpec spec;
+  spec.name = "mpm_cutting";
+  spec.params = cutting_params();
+  const Values v = validate_params(spec, given);
+  if (v.at("steady_end_fraction") <= v.at("steady_start_fraction")) {
+    throw InputError("steady_end_fraction", "must exceed steady_start_fraction");
+  }
+  const CuttingSetup s = cutting_setup_from(v);
+  double xt0 = 0.0;
+  MpmProblem pb = build_cutting_problem(s, &xt0);
+  pb.setup();
+  const double T = s.total_time;
+  const double out_dt = v.at("output_interval") > 0.0 ? v.at("output_interval") : T / 400.0;
+  const int nsnap = static_cast<int>(std::lround(v.at("snapshots")));
+  const double dx = pb.config().grid.dx;
+
+  RunOutput out;
+  std::vector<double> tt, fc, ft, fnb, gap, alph;
+  double acc_c = 0.0, acc_t = 0.0, acc_nb = 0.0;
+  long acc_n = 0;
+  double next_out = out_dt;
+  int snap_done = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  double next_progress = 0.0;
+  const long max_steps = static_cast<long>(std::ceil(T / pb.dt())) + 1;
+  for (long k = 0; k < max_steps && pb.time() < T - 0.5 * pb.dt(); ++k) {
+    pb.step();
+    const ContactForces& f = pb.contact_forces();
+    acc_c += f.total.x();
+    acc_t += -f.total.y();
+    acc_nb += f.normal_below;
+    ++acc_n;
+    if (pb.time() >= next_out - 0.5 * pb.dt()) {
+      tt.push_back(pb.time());
+      fc.push_back(acc_c / static_cast<double>(acc_n));
+      ft.push_back(acc_t / static_cast<double>(acc_n));
+      fnb.push_back(acc_nb / static_cast<double>(acc_n));
+      gap.push_back(pb.crack_tip_x() - 0.5 * pb.config().crack.seg_len - (xt0 + pb.rigid_displacement().x()));
+      alph.push_back(pb.feedback_alpha());
+      acc_c = acc_t = acc_nb = 0.0;
+      acc_n = 0;
+      next_out += out_dt;
+    }
+    if (nsnap > 0 && pb.time() >= T * (snap_done + 1) / nsnap - 0.5 * pb.dt()) {
+      out.snapshots.push_back(take_snapshot(pb));
+      ++snap_done;
+    }
+    const double frac = pb.time() / T;
+    if (progress && frac >= next_progress) {
+      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::ostringstream msg;
+      msg.precision(3);
+      msg << "t = " << pb.time() * 1e3 << " ms, ETA " << (frac > 0 ? el * (1.0 - frac) / frac : 0.0) << " s";
+      progress(frac, msg.str());
+      next_progress += 0.01;
+    }
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  Table forces;
+  forces.name = "forces";
+  forces.add("t", "s", tt);
+  forces.add("F_c", "N/m", fc);
+  forces.add("F_t", "N/m", ft);
+  forces.add("F_nb", "N/m", fnb);
+  forces.add("tip_gap", "m", gap);
+  forces.add("feedback_alpha", "1/s", alph);
+  out.tables.push_back(std::move(forces));
+
+  const double t_steady = v.at("steady_start_fraction") * T;
+  const double t_steady_end = v.at("steady_end_fraction") * T;
+  std::vector<double> wc, wt, wn, wg;
+  for (std::size_t i = 0; i < tt.size(); ++i) {
+    if (tt[i] >= t_steady && tt[i] <= t_steady_end + 0.5 * out_dt) {
+      wc.push_back(fc[i]);
+      wt.push_back(ft[i]);
+      wn.push_back(fnb[i]);
+      wg.push_back(gap[i]);
+    }
+  }
+  double m, sd;
+  auto put = [&](const std::string& name, double value, const std::string& unit) {
+    out.scalars[name] = value;
+    out.scalar_units[name] = unit;
+  };
+  mean_std(wc, m, sd);
+  put("F_c", m, "N/m");
+  put("F_c_std", sd, "N/m");
+  put("F_c_noise", sd / std::fabs(m), "1");
+  put("F_c_over_bGc", m / s.G_c, "1");
+  mean_std(wt, m, sd);
+  put("F_t", m, "N/m");
+  put("F_t_std", sd, "N/m");
+  mean_std(wn, m, sd);
+  put("F_nb", m, "N/m");
+  put("F_nb_std", sd, "N/m");
+  mean_std(wg, m, sd);
+  put("tip_gap", m, "m");
+  put("touching", m < dx ? 1.0 : 0.0, "1");
+  put("mode1_fraction", pb.mode1_fraction(), "1");
+  put("released_energy", pb.released_energy(), "J/m");
+  put("particles", static_cast<double>(pb.size()), "1");
+  put("steps", static_cast<double>(pb.steps()), "1");
+  put("dt", pb.dt(), "s");
+  put("wall_time", wall, "s");
+  put("particle_steps_per_s", static_cast<double>(pb.size()) * static_cast<double>(pb.steps()) / wall, "1/s");
+  put("threads", pb.threads(), "1");
+  put("frozen_particles", static_cast<double>(pb.frozen()), "1");
+  {  // Fig 2 metric on the cut chip (material from above the crack, originally behind the crack tip)
+    const std::size_t n = pb.size();
+    std::vector<double> px(n), py(n), fxx(n), fxy(n), fyx(n), fyy(n);
+    std::vector<bool> use(n);
+    const double tip = pb.crack_tip_x();
+    for (std::size_t p = 0; p < n; ++p) {
+      const Eigen::Vector2d x = pb.position(p);
+      const Eigen::Matrix2d F = pb.deformation_gradient(p);
+      px[p] = x.x();
+      py[p] = x.y();
+      fxx[p] = F(0, 0);
+      fxy[p] = F(0, 1);
+      fyx[p] = F(1, 0);
+      fyy[p] = F(1, 1);
+      use[p] = !pb.rigid(p) && pb.above_crack(p) && pb.reference_position(p).x() < tip;
+    }
+    const DomainCoverage cov = domain_coverage(px, py, fxx, fxy, fyx, fyy, use, s.h / std::lround(s.particles_through_chip));
+    put("chip_domain_gap_fraction", cov.gap_fraction, "1");
+    put("chip_domain_overlap_fraction", cov.overlap_fraction, "1");
+  }
+  out.notes.push_back("F_c, F_t: force of the tool on the material per unit width (F_t positive pushing the "
+                      "material down, the paper's sign); averages over " +
+                      std::to_string(t_steady) + " s <= t <= " + std::to_string(t_steady_end) +
+                      " s of output-interval means.");
+  out.notes.push_back("touching = mean tool-tip/crack-tip gap in the steady window below one cell (" +
+                      std::to_string(dx) + " m).");
+  if (pb.frozen() > 0) {
+    out.notes.push_back(std::to_string(pb.frozen()) + " particles left the grid and were frozen.");
+  }
+  return out;
+}
+
+SolverSpec cutting_solver_spec() {
+  SolverSpec spec;
+  spec.name = "mpm_cutting";
+  spec.description = "2D plane-strain MPM orthogonal cutting: rigid tool, cohesive crack along the cut plane, "
+                     "neo-Hookean J2 material, PIC damping";
+  spec.source = "Nairn (2015) Eng. Fract. Mech. 149:262-275, sections 2-2.2; EQUATIONS.md A1-A4";
+  spec.params = cutting_params();
+  spec.scalars = {
+      {"F_c", Dim::force_per_width, "steady cutting force per unit width"},
+      {"F_c_std", Dim::force_per_width, "std of F_c over the steady window"},
+      {"F_c_noise", Dim::dimensionless, "std/mean of F_c in the steady window"},
+      {"F_c_over_bGc", Dim::dimensionless, "F_c / (b G_c)"},
+      {"F_t", Dim::force_per_width, "steady transverse force per unit width"},
+      {"F_t_std", Dim::force_per_width, "std of F_t"},
+      {"F_nb", Dim::force_per_width, "steady bottom-face (rubbing) normal force"},
+      {"F_nb_std", Dim::force_per_width, "std of F_nb"},
+      {"tip_gap", Dim::length, "mean crack-tip minus tool-tip x in the steady window"},
+      {"touching", Dim::dimensionless, "1 when the tool touches the crack tip"},
+      {"mode1_fraction", Dim::dimensionless, "fraction of released energy in mode I"},
+      {"released_energy", Dim::force_per_width, "cohesive energy released per unit width (J/m)"},
+      {"particles", Dim::dimensionless, "number of particles"},
+      {"steps", Dim::dimensionless, "time steps"},
+      {"dt", Dim::time, "time step"},
+      {"wall_time", Dim::time, "wall-clock time of the time loop"},
+      {"particle_steps_per_s", Dim::strain_rate, "throughput, particle-steps per second"},
+      {"threads", Dim::dimensionless, "OpenMP threads used"},
+      {"frozen_particles", Dim::dimensionless, "particles that left the grid"},
+      {"chip_domain_gap_fraction", Dim::dimensionless, "Fig 2 metric: enclosed uncovered area / covered area"},
+      {"chip_domain_overlap_fraction", Dim::dimensionless, "Fig 2 metric: multiply covered area / covered area"},
+  };
+  spec.run = run_cutting;
+  return spec;
+}
+
+void register_solvers(SolverRegistry& registry) {
+  if (registry.find("mpm_cutting")) return;
+  registry.add(cutting_solver_spec());
+}
+
+}  // namespace cutbench::mpm

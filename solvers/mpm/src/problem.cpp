@@ -1,0 +1,790 @@
+#include "cutbench/mpm/problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/mpm/shape.hpp"
+
+namespace cutbench::mpm {
+
+namespace {
+constexpr int kFields = 3;
+constexpr std::uint8_t kRigid = 2;
+constexpr double kHuge = 1e300;
+}  // namespace
+
+MpmProblem::MpmProblem(MpmConfig cfg) : cfg_(std::move(cfg)) {
+  const auto& g = cfg_.grid;
+  if (!(g.dx > 0.0) || g.nx < 2 || g.ny < 2) throw InputError("grid", "needs dx > 0 and at least 2x2 cells");
+  nnx_ = g.nx + 1;
+  nny_ = g.ny + 1;
+  nn_ = nnx_ * nny_;
+  lp_ = 0.25 * g.dx;
+}
+
+void MpmProblem::add_particle(double x, double y, double volume, bool rigid, double vx, double vy) {
+  if (setup_done_) throw std::logic_error("MpmProblem::add_particle after setup()");
+  x_.push_back(x);
+  y_.push_back(y);
+  X0_.push_back(x);
+  Y0_.push_back(y);
+  vx_.push_back(rigid ? 0.0 : vx);
+  vy_.push_back(rigid ? 0.0 : vy);
+  vol0_.push_back(volume);
+  mass_.push_back(cfg_.material.rho * volume);
+  J_.push_back(1.0);
+  alpha_.push_back(0.0);
+  Fxx_.push_back(1.0);
+  Fxy_.push_back(0.0);
+  Fyx_.push_back(0.0);
+  Fyy_.push_back(1.0);
+  bxx_.push_back(1.0);
+  bxy_.push_back(0.0);
+  byy_.push_back(1.0);
+  bzz_.push_back(1.0);
+  txx_.push_back(0.0);
+  txy_.push_back(0.0);
+  tyy_.push_back(0.0);
+  tzz_.push_back(0.0);
+  rigid_.push_back(rigid ? 1 : 0);
+  side_.push_back(cfg_.crack.enabled && y < cfg_.crack.y ? 0 : 1);
+  frozen_.push_back(0);
+  id_.push_back(id_.size());
+}
+
+void MpmProblem::setup() {
+  if (setup_done_) return;
+  const std::size_t np = x_.size();
+  if (np == 0) throw InputError("particles", "no particles");
+#ifdef _OPENMP
+  nthreads_ = cfg_.numerics.threads > 0 ? cfg_.numerics.threads : std::max(1, omp_get_max_threads());
+  if (cfg_.numerics.min_particles_per_thread > 0) {
+    const long cap = std::max(1L, static_cast<long>(np) / cfg_.numerics.min_particles_per_thread);
+    nthreads_ = static_cast<int>(std::min<long>(nthreads_, cap));
+  }
+#endif
+  double mmax = 0.0;
+  for (std::size_t p = 0; p < np; ++p) {
+    if (!rigid_[p]) {
+      ++n_deformable_;
+      mass_deformable_ += mass_[p];
+    }
+    mmax = std::max(mmax, mass_[p]);
+  }
+  mmin_ = cfg_.numerics.min_mass_fraction * mmax;
+  dt_ = cfg_.dt > 0.0 ? cfg_.dt : cfg_.numerics.cfl * cfg_.grid.dx / cfg_.material.p_wave_speed();
+  // A rigid body moving faster than the wave speed is not resolved.
+  const double vmax = cfg_.tool.velocity.norm();
+  if (vmax > 0.0) dt_ = std::min(dt_, cfg_.numerics.cfl * cfg_.grid.dx / (vmax + cfg_.material.p_wave_speed()));
+
+  i0_.assign(np, 0);
+  j0_.assign(np, 0);
+  wx_.assign(3 * np, 0.0);
+  wy_.assign(3 * np, 0.0);
+  dwx_.assign(3 * np, 0.0);
+  dwy_.assign(3 * np, 0.0);
+  fid_.assign(9 * np, 0);
+  perm_.assign(np, 0);
+  count_.assign(static_cast<std::size_t>(cfg_.grid.nx) * static_cast<std::size_t>(cfg_.grid.ny) + 2, 0);
+  dscratch_.assign(np, 0.0);
+  bscratch_.assign(np, 0);
+  sscratch_.assign(np, 0);
+  iscratch_.assign(np, 0);
+
+  nodes_.assign(kFields * static_cast<std::size_t>(nn_), NodeData{});
+  tbuf_.assign(static_cast<std::size_t>(nthreads_), std::vector<NodeData>(nodes_.size(), NodeData{}));
+  vnew_.assign(nodes_.size(), Eigen::Vector2d::Zero());
+  acc_.assign(nodes_.size(), Eigen::Vector2d::Zero());
+  vstrain_.assign(nodes_.size(), Eigen::Vector2d::Zero());
+  imp_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
+  imp_below_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
+  ke_.assign(static_cast<std::size_t>(nn_), 0.0);
+  fixed_.assign(static_cast<std::size_t>(nn_), 0);
+  cohesive_opening_.assign(static_cast<std::size_t>(nnx_), 1e30);
+  if (cfg_.fixed_mask) {
+    for (int j = 0; j < nny_; ++j) {
+      for (int i = 0; i < nnx_; ++i) {
+        fixed_[static_cast<std::size_t>(i + j * nnx_)] =
+            cfg_.fixed_mask(cfg_.grid.x0 + i * cfg_.grid.dx, cfg_.grid.y0 + j * cfg_.grid.dx);
+      }
+    }
+  }
+
+  // Crack surface: pairs of points (top, bottom) at segment centres along the crack line.
+  if (cfg_.crack.enabled) {
+    const auto& c = cfg_.crack;
+    const double len = c.seg_len > 0.0 ? c.seg_len : 0.5 * cfg_.grid.dx;
+    cfg_.crack.seg_len = len;
+    const int nseg = static_cast<int>(std::floor((c.x_end - c.x_begin) / len + 1e-9));
+    for (int k = 0; k < nseg; ++k) {
+      const double xc = c.x_begin + (k + 0.5) * len;
+      crack_.xc.push_back(xc);
+      crack_.top.emplace_back(xc, c.y);
+      crack_.bot.emplace_back(xc, c.y);
+      CohesiveState s;
+      const bool is_free = !c.cohesive || xc < c.x_free_end;
+      s.failed = is_free;
+      crack_.state.push_back(s);
+      crack_.free.push_back(is_free ? 1 : 0);
+    }
+  }
+  setup_done_ = true;
+  if (cfg_.numerics.sort_interval > 0) sort_particles();
+}
+
+int MpmProblem::field_of(double xp, double yp, int side_p, double xi, double yi) const {
+  const auto& c = cfg_.crack;
+  const int side_n = yi > c.y ? 1 : 0;
+  if (side_n == side_p) return 0;
+  double xc = 0.5 * (xp + xi);
+  const double dy = yi - yp;
+  if ((yp - c.y) * (yi - c.y) < 0.0 && std::fabs(dy) > 0.0) xc = xp + (xi - xp) * (c.y - yp) / dy;
+  return xc <= c.x_end ? 1 : 0;
+}
+
+bool MpmProblem::compute_shape(std::size_t p) {
+  const auto& g = cfg_.grid;
+  const bool crack = cfg_.crack.enabled;
+  if (frozen_[p]) return false;
+  const int i0 = ugimp_axis(x_[p], g.x0, g.dx, lp_, &wx_[3 * p], &dwx_[3 * p]);
+  const int j0 = ugimp_axis(y_[p], g.y0, g.dx, lp_, &wy_[3 * p], &dwy_[3 * p]);
+  if (i0 < 0 || j0 < 0 || i0 + 2 > g.nx || j0 + 2 > g.ny || !std::isfinite(x_[p]) || !std::isfinite(y_[p])) {
+    frozen_[p] = 1;  // left the grid: it stops interacting (reported by frozen())
+    return false;
+  }
+  i0_[p] = i0;
+  j0_[p] = j0;
+  // fast path: all three node rows on the particle's side of the crack line (or no crack)
+  const double ylo = g.y0 + j0 * g.dx, yhi = ylo + 2.0 * g.dx;
+  const std::uint8_t uniform = rigid_[p] ? kRigid : std::uint8_t{0};
+  const bool same_side = !crack || rigid_[p] || (side_[p] == 1 ? ylo > cfg_.crack.y : yhi <= cfg_.crack.y);
+  if (same_side) {
+    for (int q = 0; q < 9; ++q) fid_[9 * p + static_cast<std::size_t>(q)] = uniform;
+    return true;
+  }
+  for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < 3; ++a) {
+      fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] = static_cast<std::uint8_t>(
+          field_of(x_[p], y_[p], side_[p], g.x0 + (i0 + a) * g.dx, g.y0 + (j0 + b) * g.dx));
+    }
+  }
+  return true;
+}
+
+void MpmProblem::particles_to_grid() {
+  const long np = static_cast<long>(x_.size());
+  const Eigen::Vector2d grav = cfg_.gravity;
+  const std::size_t nsz = nodes_.size();
+  const bool ext = cfg_.contact.detection == 2;
+  const Eigen::Vector2d na = cfg_.contact.n_above, nb = cfg_.contact.n_below;
+  long frozen = 0;
+#pragma omp parallel num_threads(nthreads_)
+  {
+    int tid = 0;
+#ifdef _OPENMP
+    tid = omp_get_thread_num();
+#endif
+    std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
+    std::fill(buf.begin(), buf.end(), NodeData{});
+    if (ext) {  // max for material fields, min for the rigid field
+      for (std::size_t i = 0; i < nsz; ++i) {
+        const bool rig_field = i >= 2 * static_cast<std::size_t>(nn_);
+        buf[i].e0 = buf[i].e1 = rig_field ? kHuge : -kHuge;
+      }
+    }
+#pragma omp for schedule(static) reduction(+ : frozen)
+    for (long pl = 0; pl < np; ++pl) {
+      const auto p = static_cast<std::size_t>(pl);
+      if (!compute_shape(p)) {
+        ++frozen;
+        continue;
+      }
+      const double m = mass_[p];
+      const bool rig = rigid_[p] != 0;
+      const double v0 = vol0_[p];
+      const double sxx = txx_[p] * v0, sxy = txy_[p] * v0, syy = tyy_[p] * v0;
+      // domain extents along the contact normals: far edge of material, near edges of the tool
+      double ea = 0.0, eb = 0.0;
+      if (ext) {
+        if (rig) {
+          ea = x_[p] * na.x() + y_[p] * na.y() - lp_ * (std::fabs(na.x()) + std::fabs(na.y()));
+          eb = x_[p] * nb.x() + y_[p] * nb.y() - lp_ * (std::fabs(nb.x()) + std::fabs(nb.y()));
+        } else {
+          const Eigen::Vector2d& nn = side_[p] ? na : nb;
+          // half-extent of the parallelogram F * square along nn: lp (|F^T nn|_1)
+          const double gx = Fxx_[p] * nn.x() + Fyx_[p] * nn.y(), gy = Fxy_[p] * nn.x() + Fyy_[p] * nn.y();
+          ea = x_[p] * nn.x() + y_[p] * nn.y() + lp_ * (std::fabs(gx) + std::fabs(gy));
+        }
+      }
+      for (int b = 0; b < 3; ++b) {
+        const double wyb = wy_[3 * p + static_cast<std::size_t>(b)];
+        const double dwyb = dwy_[3 * p + static_cast<std::size_t>(b)];
+        for (int a = 0; a < 3; ++a) {
+          const double wxa = wx_[3 * p + static_cast<std::size_t>(a)];
+          const double s = wxa * wyb;
+          if (s <= 0.0) continue;
+          const int n = (i0_[p] + a) + (j0_[p] + b) * nnx_;
+          const std::size_t f = fid_[9 * p + static_cast<std::size_t>(a + 3 * b)];
+          NodeData& nd = buf[f * static_cast<std::size_t>(nn_) + static_cast<std::size_t>(n)];
+          const double ms = m * s;
+          nd.m += ms;
+          nd.mx += ms * x_[p];
+          nd.my += ms * y_[p];
+          if (ext) {
+            if (rig) {
+              nd.e0 = std::min(nd.e0, ea);
+              nd.e1 = std::min(nd.e1, eb);
+            } else {
+              nd.e0 = std::max(nd.e0, ea);
+            }
+          }
+          if (rig) continue;
+          const double gx = dwx_[3 * p + static_cast<std::size_t>(a)] * wyb;
+          const double gy = wxa * dwyb;
+          nd.px += ms * vx_[p];
+          nd.py += ms * vy_[p];
+          nd.fx += -(sxx * gx + sxy * gy) + ms * grav.x();
+          nd.fy += -(sxy * gx + syy * gy) + ms * grav.y();
+        }
+      }
+    }
+    // implicit barrier; reduce buffers in fixed thread order
+#pragma omp for schedule(static)
+    for (long il = 0; il < static_cast<long>(nsz); ++il) {
+      const auto i = static_cast<std::size_t>(il);
+      NodeData acc = tbuf_[0][i];
+      for (std::size_t t = 1; t < tbuf_.size(); ++t) {
+        const NodeData& o = tbuf_[t][i];
+        acc.m += o.m;
+        acc.px += o.px;
+        acc.py += o.py;
+        acc.fx += o.fx;
+        acc.fy += o.fy;
+        acc.mx += o.mx;
+        acc.my += o.my;
+        if (ext) {
+          const bool rig_field = i >= 2 * static_cast<std::size_t>(nn_);
+          acc.e0 = rig_field ? std::min(acc.e0, o.e0) : std::max(acc.e0, o.e0);
+          acc.e1 = rig_field ? std::min(acc.e1, o.e1) : std::max(acc.e1, o.e1);
+        }
+      }
+      nodes_[i] = acc;
+    }
+  }
+  frozen_count_ = frozen;
+}
+
+template <class F>
+void MpmProblem::for_point_nodes(const Eigen::Vector2d& pt, int side, F&& fn) const {
+  const auto& g = cfg_.grid;
+  double wx[3], wy[3], dwx[3], dwy[3];
+  const int i0 = ugimp_axis(pt.x(), g.x0, g.dx, lp_, wx, dwx);
+  const int j0 = ugimp_axis(pt.y(), g.y0, g.dx, lp_, wy, dwy);
+  if (i0 < 0 || j0 < 0 || i0 + 2 > g.nx || j0 + 2 > g.ny) return;
+  for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < 3; ++a) {
+      const double s = wx[a] * wy[b];
+      if (s <= 0.0) continue;
+      const int i = i0 + a, j = j0 + b;
+      const int f = field_of(pt.x(), pt.y(), side, g.x0 + i * g.dx, g.y0 + j * g.dx);
+      const std::size_t k = static_cast<std::size_t>(f) * static_cast<std::size_t>(nn_) +
+                            static_cast<std::size_t>(i + j * nnx_);
+      if (nodes_[k].m <= mmin_) continue;
+      fn(k, s);
+    }
+  }
+}
+
+void MpmProblem::cohesive_forces() {
+  if (!cfg_.crack.enabled) return;
+  const auto& c = cfg_.crack;
+  const std::size_t ns = crack_.xc.size();
+  std::fill(cohesive_opening_.begin(), cohesive_opening_.end(), 1e30);
+  for (std::size_t k = 0; k < ns; ++k) {
+    const Eigen::Vector2d d = crack_.top[k] - crack_.bot[k];
+    // opening seen by crack contact at the nearest node column
+    const int col = static_cast<int>(std::lround((crack_.xc[k] - cfg_.grid.x0) / cfg_.grid.dx));
+    if (col >= 0 && col < nnx_) {
+      double& o = cohesive_opening_[static_cast<std::size_t>(col)];
+      o = std::min(o, d.y());
+    }
+    CohesiveState& st = crack_.state[k];
+    if (st.failed) continue;
+    const CohesiveTraction t = cohesive_update(c.mode1, c.mode2, d.y(), d.x(), st);
+    if (st.failed) continue;
+    const Eigen::Vector2d force(t.tt * c.seg_len, t.tn * c.seg_len);  // pulls top down/back
+    for (int sidx = 0; sidx < 2; ++sidx) {
+      const Eigen::Vector2d& pt = sidx == 0 ? crack_.top[k] : crack_.bot[k];
+      const int side = sidx == 0 ? 1 : 0;
+      const Eigen::Vector2d fvec = sidx == 0 ? Eigen::Vector2d(-force) : force;
+      // Mass-weighted spreading (share S_i m_i / sum S m): every node of the field gets the same
+      // acceleration, so nodes that hold only a sliver of a particle are not kicked.
+      double wsum = 0.0;
+      for_point_nodes(pt, side, [&](std::size_t kk, double s) { wsum += s * nodes_[kk].m; });
+      if (wsum <= 0.0) continue;
+      for_point_nodes(pt, side, [&](std::size_t kk, double s) {
+        const double share = s * nodes_[kk].m / wsum;
+        nodes_[kk].fx += fvec.x() * share;
+        nodes_[kk].fy += fvec.y() * share;
+      });
+    }
+  }
+}
+
+void MpmProblem::resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const bool has[2], const Eigen::Vector2d& V,
+                                  Eigen::Vector2d& imp, Eigen::Vector2d& impb) const {
+  const double dt = dt_;
+  const auto& ct = cfg_.contact;
+  const double gapmax = ct.gap_factor * cfg_.grid.dx;
+  const bool crack = cfg_.crack.enabled;
+  const auto nnz = static_cast<std::size_t>(nn_);
+  const int i = static_cast<int>(n % static_cast<std::size_t>(nnx_));
+  const double yn = cfg_.grid.y0 + static_cast<double>(n / static_cast<std::size_t>(nnx_)) * cfg_.grid.dx;
+  const int node_side = (!crack || yn > cfg_.crack.y) ? 1 : 0;
+  imp.setZero();
+  impb.setZero();
+    // crack contact (frictionless) between the two sides when the crack is closed
+    if (crack && has[0] && has[1]) {
+      const int fa = node_side == 1 ? 0 : 1;  // field holding material from above the crack
+      const int fb = 1 - fa;
+      const double ma = nodes_[static_cast<std::size_t>(fa) * nnz + n].m;
+      const double mb = nodes_[static_cast<std::size_t>(fb) * nnz + n].m;
+      const double vrel = p[fa].y() / ma - p[fb].y() / mb;
+      if (cohesive_opening_[static_cast<std::size_t>(i)] + vrel * dt < 0.0) {
+        const double vcm = (p[fa].y() + p[fb].y()) / (ma + mb);
+        p[fa].y() = ma * vcm;
+        p[fb].y() = mb * vcm;
+      }
+    }
+    // rigid-body contact with prescribed normals
+    const NodeData& rd = nodes_[kRigid * nnz + n];
+    if (rd.m > mmin_) {
+      const Eigen::Vector2d cr(rd.mx / rd.m, rd.my / rd.m);
+      for (int f = 0; f < 2; ++f) {
+        if (!has[f]) continue;
+        const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
+        const int mat_side = f == 0 ? node_side : 1 - node_side;
+        const Eigen::Vector2d& nrm = mat_side == 1 ? ct.n_above : ct.n_below;
+        if (ct.detection == 1 && gapmax > 0.0) {
+          const Eigen::Vector2d cm(nd.mx / nd.m, nd.my / nd.m);
+          if ((cr - cm).dot(nrm) > gapmax) continue;
+        } else if (ct.detection == 2) {
+          const double tool_edge = mat_side == 1 ? rd.e0 : rd.e1;
+          if (nd.e0 < tool_edge - gapmax) continue;  // domains apart
+        }
+        const Eigen::Vector2d dv = p[f] / nd.m - V;
+        const double dvn = dv.dot(nrm);
+        if (dvn <= 0.0) continue;
+        Eigen::Vector2d dp = -nd.m * dvn * nrm;
+        const Eigen::Vector2d vt = dv - dvn * nrm;
+        const double vtn = vt.norm();
+        if (vtn > 0.0) {
+          const double fric = std::min(ct.mu * nd.m * dvn, nd.m * vtn);
+          dp -= fric * vt / vtn;
+        }
+        p[f] += dp;
+        imp += dp;
+        if (mat_side == 0) impb += dp;
+      }
+    }
+}
+
+void MpmProblem::grid_update() {
+  const double dt = dt_;
+  const double alpha = alpha_fb_;
+  const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
+  const auto& ct = cfg_.contact;
+  const auto nnz = static_cast<std::size_t>(nn_);
+#pragma omp parallel for schedule(static) num_threads(nthreads_)
+  for (long nl = 0; nl < nn_; ++nl) {
+    const auto n = static_cast<std::size_t>(nl);
+    Eigen::Vector2d vold[2], p[2];
+    bool has[2];
+    for (int f = 0; f < 2; ++f) {
+      NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
+      has[f] = nd.m > mmin_;
+      if (!has[f]) {
+        nd.m = 0.0;
+        vold[f].setZero();
+        p[f].setZero();
+        continue;
+      }
+      vold[f] = Eigen::Vector2d(nd.px, nd.py) / nd.m;
+      p[f] = Eigen::Vector2d(nd.px + (nd.fx - alpha * nd.px) * dt, nd.py + (nd.fy - alpha * nd.py) * dt);
+    }
+    Eigen::Vector2d imp, impb;
+    resolve_contacts(n, p, has, V, imp, impb);
+    imp_[n] = imp;
+    imp_below_[n] = impb;
+    // fixed nodes
+    const int fm = fixed_[n];
+    double ke = 0.0;
+    for (int f = 0; f < 2; ++f) {
+      const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
+      if (!has[f]) {
+        vnew_[k].setZero();
+        acc_[k].setZero();
+        continue;
+      }
+      if (fm & 1) {
+        p[f].x() = 0.0;
+        vold[f].x() = 0.0;
+      }
+      if (fm & 2) {
+        p[f].y() = 0.0;
+        vold[f].y() = 0.0;
+      }
+      const double m = nodes_[k].m;
+      vnew_[k] = p[f] / m;
+      acc_[k] = (vnew_[k] - vold[f]) / dt;
+      ke += 0.5 * m * vnew_[k].squaredNorm();
+    }
+    ke_[n] = ke;
+  }
+  // deterministic serial sums
+  Eigen::Vector2d imp = Eigen::Vector2d::Zero(), impb = Eigen::Vector2d::Zero();
+  double ke = 0.0;
+  for (std::size_t n = 0; n < nnz; ++n) {
+    imp += imp_[n];
+    impb += imp_below_[n];
+    ke += ke_[n];
+  }
+  forces_.total = imp / dt;
+  forces_.below = impb / dt;
+  forces_.normal_below = -forces_.below.dot(ct.n_below);
+  // feedback damping on grid kinetic energy
+  const auto& fb = cfg_.damping;
+  if (fb.gain > 0.0 && time_ + dt < fb.t_off && mass_deformable_ > 0.0) {
+    const double ke_ref = 0.5 * mass_deformable_ * fb.v_ref * fb.v_ref;
+    alpha_fb_ = std::clamp(alpha_fb_ + dt * fb.gain * ke / ke_ref, 0.0, 0.5 / dt);
+  } else {
+    alpha_fb_ = 0.0;
+  }
+}
+
+void MpmProblem::update_strain(std::size_t p, const Eigen::Matrix2d& L) {
+  const Eigen::Matrix2d l = L * dt_;
+  const double F00 = Fxx_[p], F01 = Fxy_[p], F10 = Fyx_[p], F11 = Fyy_[p];
+  Fxx_[p] = F00 + l(0, 0) * F00 + l(0, 1) * F10;
+  Fxy_[p] = F01 + l(0, 0) * F01 + l(0, 1) * F11;
+  Fyx_[p] = F10 + l(1, 0) * F00 + l(1, 1) * F10;
+  Fyy_[p] = F11 + l(1, 0) * F01 + l(1, 1) * F11;
+  const double J = Fxx_[p] * Fyy_[p] - Fxy_[p] * Fyx_[p];
+  J_[p] = J;
+  double b[4] = {bxx_[p], bxy_[p], byy_[p], bzz_[p]};
+  double tau[4];
+  update_stress_plane_strain(cfg_.material, l, J, b, alpha_[p], tau);
+  bxx_[p] = b[0];
+  bxy_[p] = b[1];
+  byy_[p] = b[2];
+  bzz_[p] = b[3];
+  txx_[p] = tau[0];
+  txy_[p] = tau[1];
+  tyy_[p] = tau[2];
+  tzz_[p] = tau[3];
+}
+
+namespace {
+// Velocity gradient sum_i v_i (x) grad S_i over a particle's 9 nodes from a nodal velocity array.
+template <class Idx>
+inline Eigen::Matrix2d velocity_gradient(const double* wx, const double* wy, const double* dwx, const double* dwy,
+                                         const std::vector<Eigen::Vector2d>& vel, Idx&& node_index) {
+  Eigen::Matrix2d L = Eigen::Matrix2d::Zero();
+  for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < 3; ++a) {
+      if (wx[a] * wy[b] <= 0.0) continue;
+      const Eigen::Vector2d& v = vel[node_index(a, b)];
+      const double gx = dwx[a] * wy[b], gy = wx[a] * dwy[b];
+      L(0, 0) += v.x() * gx;
+      L(0, 1) += v.x() * gy;
+      L(1, 0) += v.y() * gx;
+      L(1, 1) += v.y() * gy;
+    }
+  }
+  return L;
+}
+}  // namespace
+
+void MpmProblem::grid_to_particles() {
+  const long np = static_cast<long>(x_.size());
+  const double dt = dt_;
+  const double beta = cfg_.numerics.pic_fraction;
+  const int order = cfg_.numerics.position_order;
+  const bool musl = cfg_.numerics.musl;
+  const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
+  const auto nnz = static_cast<std::size_t>(nn_);
+#pragma omp parallel for schedule(static) num_threads(nthreads_)
+  for (long pl = 0; pl < np; ++pl) {
+    const auto p = static_cast<std::size_t>(pl);
+    if (frozen_[p]) continue;
+    if (rigid_[p]) {
+      x_[p] += V.x() * dt;
+      y_[p] += V.y() * dt;
+      vx_[p] = V.x();
+      vy_[p] = V.y();
+      continue;
+    }
+    auto idx = [&](int a, int b) {
+      return fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz +
+             static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_);
+    };
+    Eigen::Vector2d vg = Eigen::Vector2d::Zero(), ag = Eigen::Vector2d::Zero();
+    for (int b = 0; b < 3; ++b) {
+      for (int a = 0; a < 3; ++a) {
+        const double s = wx_[3 * p + static_cast<std::size_t>(a)] * wy_[3 * p + static_cast<std::size_t>(b)];
+        if (s <= 0.0) continue;
+        const std::size_t k = idx(a, b);
+        vg += s * vnew_[k];
+        ag += s * acc_[k];
+      }
+    }
+    const Eigen::Vector2d vp(vx_[p], vy_[p]);
+    const Eigen::Vector2d vgn = vg - ag * dt;  // v_{g->p}^{(n)}
+    const Eigen::Vector2d vnew = vp + ag * dt - beta * (vp - vgn);
+    Eigen::Vector2d dx;
+    if (order == 0) {
+      dx = dt * vg;
+    } else if (order == 1) {
+      dx = dt * (vg - 0.5 * beta * (vp - vgn));
+    } else {
+      dx = dt * (vgn + 0.5 * (vnew - vp));
+    }
+    x_[p] += dx.x();
+    y_[p] += dx.y();
+    vx_[p] = vnew.x();
+    vy_[p] = vnew.y();
+    if (!musl) {  // USL: gradient of the updated grid velocities
+      update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vnew_, idx));
+    }
+  }
+  rigid_disp_ += V * dt;
+  if (!musl) return;
+  remap_momenta();
+#pragma omp parallel for schedule(static) num_threads(nthreads_)
+  for (long pl = 0; pl < np; ++pl) {
+    const auto p = static_cast<std::size_t>(pl);
+    if (frozen_[p] || rigid_[p]) continue;
+    auto idx = [&](int a, int b) {
+      return fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz +
+             static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_);
+    };
+    update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vstrain_, idx));
+  }
+}
+
+void MpmProblem::remap_momenta() {
+  const long np = static_cast<long>(x_.size());
+  const Eigen::Vector2d V = cfg_.tool.at(time_ + dt_);
+  const auto nnz = static_cast<std::size_t>(nn_);
+  const long nfield = 2 * static_cast<long>(nnz);
+#pragma omp parallel num_threads(nthreads_)
+  {
+    int tid = 0;
+#ifdef _OPENMP
+    tid = omp_get_thread_num();
+#endif
+    std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
+    for (long i = 0; i < nfield; ++i) {
+      buf[static_cast<std::size_t>(i)].px = 0.0;
+      buf[static_cast<std::size_t>(i)].py = 0.0;
+    }
+#pragma omp for schedule(static)
+    for (long pl = 0; pl < np; ++pl) {
+      const auto p = static_cast<std::size_t>(pl);
+      if (frozen_[p] || rigid_[p]) continue;
+      const double m = mass_[p];
+      for (int b = 0; b < 3; ++b) {
+        for (int a = 0; a < 3; ++a) {
+          const double s = wx_[3 * p + static_cast<std::size_t>(a)] * wy_[3 * p + static_cast<std::size_t>(b)];
+          if (s <= 0.0) continue;
+          NodeData& nd = buf[fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz +
+                             static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_)];
+          nd.px += m * s * vx_[p];
+          nd.py += m * s * vy_[p];
+        }
+      }
+    }
+#pragma omp for schedule(static)
+    for (long il = 0; il < nfield; ++il) {
+      const auto i = static_cast<std::size_t>(il);
+      double px = tbuf_[0][i].px, py = tbuf_[0][i].py;
+      for (std::size_t t = 1; t < tbuf_.size(); ++t) {
+        px += tbuf_[t][i].px;
+        py += tbuf_[t][i].py;
+      }
+      nodes_[i].px = px;
+      nodes_[i].py = py;
+    }
+#pragma omp for schedule(static)
+    for (long nl = 0; nl < nn_; ++nl) {
+      const auto n = static_cast<std::size_t>(nl);
+      Eigen::Vector2d pm[2], imp, impb;
+      bool has[2];
+      for (int f = 0; f < 2; ++f) {
+        const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
+        has[f] = nd.m > mmin_;
+        pm[f] = has[f] ? Eigen::Vector2d(nd.px, nd.py) : Eigen::Vector2d::Zero();
+      }
+      resolve_contacts(n, pm, has, V, imp, impb);
+      const int fm = fixed_[n];
+      for (int f = 0; f < 2; ++f) {
+        const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
+        if (!has[f]) {
+          vstrain_[k].setZero();
+          continue;
+        }
+        if (fm & 1) pm[f].x() = 0.0;
+        if (fm & 2) pm[f].y() = 0.0;
+        vstrain_[k] = pm[f] / nodes_[k].m;
+      }
+    }
+  }
+}
+
+Eigen::Vector2d MpmProblem::field_velocity(const Eigen::Vector2d& pt, int side) const {
+  Eigen::Vector2d v = Eigen::Vector2d::Zero();
+  double wsum = 0.0;
+  for_point_nodes(pt, side, [&](std::size_t k, double s) {  // momentum-weighted, see cohesive_forces()
+    v += s * nodes_[k].m * vnew_[k];
+    wsum += s * nodes_[k].m;
+  });
+  return wsum > 0.0 ? Eigen::Vector2d(v / wsum) : Eigen::Vector2d::Zero();
+}
+
+void MpmProblem::move_crack_surfaces() {
+  if (!cfg_.crack.enabled) return;
+  const long ns = static_cast<long>(crack_.xc.size());
+#pragma omp parallel for schedule(static) num_threads(nthreads_) if (ns > 2000)
+  for (long kl = 0; kl < ns; ++kl) {
+    const auto k = static_cast<std::size_t>(kl);
+    const Eigen::Vector2d vt = field_velocity(crack_.top[k], 1);
+    const Eigen::Vector2d vb = field_velocity(crack_.bot[k], 0);
+    crack_.top[k] += dt_ * vt;
+    crack_.bot[k] += dt_ * vb;
+  }
+}
+
+void MpmProblem::step() {
+  if (!setup_done_) setup();
+  if (cfg_.numerics.sort_interval > 0 && steps_ > 0 && steps_ % cfg_.numerics.sort_interval == 0) {
+    sort_particles();
+  }
+  particles_to_grid();  // computes the shape functions too
+  cohesive_forces();
+  grid_update();
+  grid_to_particles();
+  move_crack_surfaces();
+  time_ += dt_;
+  ++steps_;
+}
+
+void MpmProblem::sort_particles() {
+  const auto& g = cfg_.grid;
+  const std::size_t np = x_.size();
+  const std::size_t ncell = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  std::fill(count_.begin(), count_.end(), 0);
+  auto cell_of = [&](std::size_t p) -> std::size_t {
+    const long i = static_cast<long>(std::floor((x_[p] - g.x0) / g.dx));
+    const long j = static_cast<long>(std::floor((y_[p] - g.y0) / g.dx));
+    if (frozen_[p] || i < 0 || j < 0 || i >= g.nx || j >= g.ny) return ncell;  // last bucket
+    return static_cast<std::size_t>(i + j * g.nx);
+  };
+  for (std::size_t p = 0; p < np; ++p) ++count_[cell_of(p) + 1];
+  for (std::size_t c = 1; c < count_.size(); ++c) count_[c] += count_[c - 1];
+  for (std::size_t p = 0; p < np; ++p) perm_[count_[cell_of(p)]++] = p;  // stable
+  auto apply_d = [&](std::vector<double>& v) {
+    for (std::size_t q = 0; q < np; ++q) dscratch_[q] = v[perm_[q]];
+    v.swap(dscratch_);
+  };
+  auto apply_b = [&](std::vector<std::uint8_t>& v) {
+    for (std::size_t q = 0; q < np; ++q) bscratch_[q] = v[perm_[q]];
+    v.swap(bscratch_);
+  };
+  for (auto* v : {&x_, &y_, &X0_, &Y0_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_, &bxx_, &bxy_,
+                  &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_}) {
+    apply_d(*v);
+  }
+  for (auto* v : {&rigid_, &side_, &frozen_}) apply_b(*v);
+  for (std::size_t q = 0; q < np; ++q) sscratch_[q] = id_[perm_[q]];
+  id_.swap(sscratch_);
+}
+
+// ------------------------------------------------------------------ observers
+double MpmProblem::kinetic_energy() const {
+  double e = 0.0;
+  for (std::size_t p = 0; p < x_.size(); ++p) {
+    if (!rigid_[p]) e += 0.5 * mass_[p] * (vx_[p] * vx_[p] + vy_[p] * vy_[p]);
+  }
+  return e;
+}
+
+double MpmProblem::strain_energy() const {
+  double e = 0.0;
+  Eigen::Matrix3d b = Eigen::Matrix3d::Zero();
+  for (std::size_t p = 0; p < x_.size(); ++p) {
+    if (rigid_[p]) continue;
+    b << bxx_[p], bxy_[p], 0.0, bxy_[p], byy_[p], 0.0, 0.0, 0.0, bzz_[p];
+    e += vol0_[p] * strain_energy_density(cfg_.material, b, J_[p]);
+  }
+  return e;
+}
+
+Eigen::Vector2d MpmProblem::momentum() const {
+  Eigen::Vector2d m = Eigen::Vector2d::Zero();
+  for (std::size_t p = 0; p < x_.size(); ++p) {
+    if (!rigid_[p]) m += mass_[p] * Eigen::Vector2d(vx_[p], vy_[p]);
+  }
+  return m;
+}
+
+Eigen::Vector2d MpmProblem::grid_momentum() const {
+  Eigen::Vector2d m = Eigen::Vector2d::Zero();
+  for (std::size_t k = 0; k < 2 * static_cast<std::size_t>(nn_); ++k) m += nodes_[k].m * vnew_[k];
+  return m;
+}
+
+Eigen::Matrix2d MpmProblem::deformation_gradient(std::size_t p) const {
+  Eigen::Matrix2d F;
+  F << Fxx_[p], Fxy_[p], Fyx_[p], Fyy_[p];
+  return F;
+}
+
+Eigen::Matrix3d MpmProblem::cauchy_stress(std::size_t p) const {
+  Eigen::Matrix3d s;
+  s << txx_[p], txy_[p], 0.0, txy_[p], tyy_[p], 0.0, 0.0, 0.0, tzz_[p];
+  return s / J_[p];
+}
+
+double MpmProblem::crack_tip_x() const {
+  for (std::size_t k = 0; k < crack_.xc.size(); ++k) {
+    if (!crack_.state[k].failed) return crack_.xc[k];
+  }
+  return cfg_.crack.x_end;
+}
+
+double MpmProblem::released_energy() const {
+  double e = 0.0;
+  for (std::size_t k = 0; k < crack_.xc.size(); ++k) {
+    if (crack_.state[k].failed && !crack_.free[k]) e += (crack_.state[k].JI + crack_.state[k].JII) * cfg_.crack.seg_len;
+  }
+  return e;
+}
+
+double MpmProblem::mode1_fraction() const {
+  double a = 0.0, b = 0.0;
+  for (std::size_t k = 0; k < crack_.xc.size(); ++k) {
+    if (crack_.state[k].failed && !crack_.free[k]) {
+      a += crack_.state[k].JI;
+      b += crack_.state[k].JI + crack_.state[k].JII;
+    }
+  }
+  return b > 0.0 ? a / b : std::nan("");
+}
+
+}  // namespace cutbench::mpm

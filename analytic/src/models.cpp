@@ -25,13 +25,7 @@ double todeg(double r) { return r * 180.0 / kPi; }
 
 ParamSpec ranged(std::string name, Dim dim, std::string desc, double lo, bool lo_inc, double hi,
                  bool hi_inc, std::optional<double> def = std::nullopt) {
-  ParamSpec p = param(std::move(name), dim, std::move(desc));
-  p.min = lo;
-  p.min_inclusive = lo_inc;
-  p.max = hi;
-  p.max_inclusive = hi_inc;
-  p.default_value = def;
-  return p;
+  return param(std::move(name), dim, std::move(desc), def, lo, hi, lo_inc, hi_inc);
 }
 // > 0
 ParamSpec pos(std::string name, Dim dim, std::string desc, std::optional<double> def = std::nullopt) {

@@ -65,6 +65,13 @@ double qty(const json& v, Dim dim, const std::string& field) {
   throw InputError(field, "expected a number or a \"value unit\" string");
 }
 
+// A `where = { column = value }` table as text to match reference rows (numbers as written).
+std::map<std::string, std::string> where_of(const json& where) {
+  std::map<std::string, std::string> out;
+  for (const auto& [k, v] : where.items()) out[k] = v.is_string() ? v.get<std::string>() : v.dump();
+  return out;
+}
+
 double interp(const std::vector<double>& x, const std::vector<double>& y, double at) {
   // x need not be sorted; use the sorted order of finite pairs.
   std::vector<std::size_t> idx;
@@ -256,9 +263,7 @@ double reference_value(const CaseSpec& spec, const std::vector<SeriesResult>& se
     const std::string col = ref.at("column").get<std::string>();
     std::size_t row = 0;
     if (ref.contains("where")) {
-      std::map<std::string, std::string> where;
-      for (const auto& [k, v] : ref["where"].items()) where[k] = v.is_string() ? v.get<std::string>() : v.dump();
-      const auto rows = t.select(where);
+      const auto rows = t.select(where_of(ref["where"]));
       if (rows.size() != 1) {
         throw InputError(field + ".where", "matches " + std::to_string(rows.size()) + " rows of " +
                                                t.path.filename().string() + " (need exactly 1)");
@@ -350,9 +355,7 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
           const ReferenceTable& t = refs.get(path, field + ".reference.file");
           std::vector<std::size_t> rows;
           if (cs.reference.contains("where")) {
-            std::map<std::string, std::string> where;
-            for (const auto& [k, w] : cs.reference["where"].items()) where[k] = w.is_string() ? w.get<std::string>() : w.dump();
-            rows = t.select(where);
+            rows = t.select(where_of(cs.reference["where"]));
           } else {
             for (std::size_t i = 0; i < t.rows; ++i) rows.push_back(i);
           }

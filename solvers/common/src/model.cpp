@@ -15,6 +15,17 @@ ParamSpec param(std::string name, Dim dim, std::string description) {
   return p;
 }
 
+ParamSpec param(std::string name, Dim dim, std::string description, std::optional<double> default_value,
+                double min, double max, bool min_inclusive, bool max_inclusive) {
+  ParamSpec p = param(std::move(name), dim, std::move(description));
+  p.default_value = default_value;
+  p.min = min;
+  p.max = max;
+  p.min_inclusive = min_inclusive;
+  p.max_inclusive = max_inclusive;
+  return p;
+}
+
 ParamSpec& positive(ParamSpec& p) {
   p.min = 0.0;
   p.min_inclusive = false;

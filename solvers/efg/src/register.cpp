@@ -12,14 +12,7 @@ namespace cutbench::efg {
 namespace {
 
 ParamSpec p(const std::string& name, Dim dim, const std::string& desc, double def, double lo, double hi) {
-  ParamSpec s;
-  s.name = name;
-  s.dim = dim;
-  s.description = desc;
-  s.default_value = def;
-  s.min = lo;
-  s.max = hi;
-  return s;
+  return param(name, dim, desc, def, lo, hi);
 }
 
 WeightParams weight_of(const Values& v) {

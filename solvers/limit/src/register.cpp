@@ -1,5 +1,6 @@
 #include "cutbench/limit/register.hpp"
 
+#include <limits>
 #include <chrono>
 #include <cmath>
 
@@ -12,24 +13,16 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
 ParamSpec p_pos(const std::string& name, Dim dim, const std::string& desc, double def) {
-  ParamSpec p = param(name, dim, desc);
-  positive(p);
-  p.default_value = def;
-  return p;
+  return param(name, dim, desc, def, 0.0, kInf, false);
 }
 ParamSpec p_nonneg(const std::string& name, Dim dim, const std::string& desc, double def) {
-  ParamSpec p = param(name, dim, desc);
-  non_negative(p);
-  p.default_value = def;
-  return p;
+  return param(name, dim, desc, def, 0.0, kInf);
 }
 ParamSpec p_int(const std::string& name, const std::string& desc, double def, double lo, double hi) {
-  ParamSpec p = param(name, Dim::dimensionless, desc);
-  p.default_value = def;
-  p.min = lo;
-  p.max = hi;
-  return p;
+  return param(name, Dim::dimensionless, desc, def, lo, hi);
 }
 
 Values validated(const SolverSpec& spec, const Values& given) {

@@ -107,65 +107,56 @@ BenchResult bench_cutting(const CuttingSetup& s, long warmup, long steps) {
 }
 
 namespace {
-ParamSpec make(const std::string& name, Dim dim, const std::string& desc, double def, double lo, double hi,
-               bool lo_incl = true) {
-  ParamSpec p = param(name, dim, desc);
-  p.default_value = def;
-  p.min = lo;
-  p.max = hi;
-  p.min_inclusive = lo_incl;
-  return p;
-}
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kDeg = M_PI / 180.0;
 }  // namespace
 
 std::vector<ParamSpec> cutting_params() {
   return {
-      make("h", Dim::length, "depth of cut", 0.9e-3, 0.0, kInf, false),
-      make("rake", Dim::angle, "tool rake angle alpha", 10.0 * kDeg, -30.0 * kDeg, 60.0 * kDeg),
-      make("clearance", Dim::angle, "tool clearance angle", 5.0 * kDeg, 1.0 * kDeg, 30.0 * kDeg),
-      make("K", Dim::stress, "bulk modulus", 980e6, 0.0, kInf, false),
-      make("G", Dim::stress, "shear modulus", 376e6, 0.0, kInf, false),
-      make("rho", Dim::density, "density", 1000.0, 0.0, kInf, false),
-      make("sigma_y0", Dim::stress, "initial yield stress", 25e6, 0.0, kInf, false),
-      make("E_T", Dim::stress, "tangent modulus of the tensile curve (E_p = E E_T/(E - E_T))", 100e6, 0.0, kInf),
-      make("G_c", Dim::energy_per_area, "cohesive toughness (modes I and II)", 2000.0, 0.0, kInf, false),
-      make("sigma_c", Dim::stress, "cohesive strength (modes I and II)", 40e6, 0.0, kInf, false),
-      make("traction_law", Dim::dimensionless, "0 = cubic (Eq. 3), 1 = triangular", 0.0, 0.0, 1.0),
-      make("mu", Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0),
-      make("pic_fraction", Dim::dimensionless, "PIC damping fraction (paper's 1 - beta): 1 = pure PIC", 1.0, 0.0, 1.0),
-      make("position_order", Dim::dimensionless, "position update: 0, 1 or 2 (Eq. 10)", 2.0, 0.0, 2.0),
-      make("strain_update", Dim::dimensionless, "0 = USL (updated grid velocities), 1 = MUSL (re-extrapolated momenta)",
+      param("h", Dim::length, "depth of cut", 0.9e-3, 0.0, kInf, false),
+      param("rake", Dim::angle, "tool rake angle alpha", 10.0 * kDeg, -30.0 * kDeg, 60.0 * kDeg),
+      param("clearance", Dim::angle, "tool clearance angle", 5.0 * kDeg, 1.0 * kDeg, 30.0 * kDeg),
+      param("K", Dim::stress, "bulk modulus", 980e6, 0.0, kInf, false),
+      param("G", Dim::stress, "shear modulus", 376e6, 0.0, kInf, false),
+      param("rho", Dim::density, "density", 1000.0, 0.0, kInf, false),
+      param("sigma_y0", Dim::stress, "initial yield stress", 25e6, 0.0, kInf, false),
+      param("E_T", Dim::stress, "tangent modulus of the tensile curve (E_p = E E_T/(E - E_T))", 100e6, 0.0, kInf),
+      param("G_c", Dim::energy_per_area, "cohesive toughness (modes I and II)", 2000.0, 0.0, kInf, false),
+      param("sigma_c", Dim::stress, "cohesive strength (modes I and II)", 40e6, 0.0, kInf, false),
+      param("traction_law", Dim::dimensionless, "0 = cubic (Eq. 3), 1 = triangular", 0.0, 0.0, 1.0),
+      param("mu", Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0),
+      param("pic_fraction", Dim::dimensionless, "PIC damping fraction (paper's 1 - beta): 1 = pure PIC", 1.0, 0.0, 1.0),
+      param("position_order", Dim::dimensionless, "position update: 0, 1 or 2 (Eq. 10)", 2.0, 0.0, 2.0),
+      param("strain_update", Dim::dimensionless, "0 = USL (updated grid velocities), 1 = MUSL (re-extrapolated momenta)",
            0.0, 0.0, 1.0),
-      make("particles_through_chip", Dim::dimensionless, "particles through the depth of cut", 15.0, 2.0, 200.0),
-      make("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0),
-      make("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
-      make("free_crack_factor", Dim::dimensionless, "traction-free start of the crack / h", 2.0, 0.0, 200.0),
-      make("base_factor", Dim::dimensionless, "depth below the cut plane / h", 3.0, 0.25, 50.0),
-      make("tool_height_factor", Dim::dimensionless, "tool height above the cut plane / h", 4.0, 1.0, 50.0),
-      make("tool_length_factor", Dim::dimensionless, "tool length behind the tip / h", 4.0, 1.0, 50.0),
-      make("chip_room_factor", Dim::dimensionless, "grid height above the cut plane / h", 12.0, 2.0, 100.0),
-      make("speed", Dim::velocity, "cutting speed", 2.0, 0.0, 1000.0, false),
-      make("ramp_fraction", Dim::dimensionless, "fraction of the run over which the speed ramps 0 -> V", 0.3, 0.0, 1.0),
-      make("total_time", Dim::time, "simulated time", 8e-3, 0.0, kInf, false),
-      make("output_interval", Dim::time, "force-history interval (0: total_time/400)", 0.0, 0.0, kInf),
-      make("steady_start_fraction", Dim::dimensionless, "steady window starts at this fraction of the run", 0.5,
+      param("particles_through_chip", Dim::dimensionless, "particles through the depth of cut", 15.0, 2.0, 200.0),
+      param("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0),
+      param("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
+      param("free_crack_factor", Dim::dimensionless, "traction-free start of the crack / h", 2.0, 0.0, 200.0),
+      param("base_factor", Dim::dimensionless, "depth below the cut plane / h", 3.0, 0.25, 50.0),
+      param("tool_height_factor", Dim::dimensionless, "tool height above the cut plane / h", 4.0, 1.0, 50.0),
+      param("tool_length_factor", Dim::dimensionless, "tool length behind the tip / h", 4.0, 1.0, 50.0),
+      param("chip_room_factor", Dim::dimensionless, "grid height above the cut plane / h", 12.0, 2.0, 100.0),
+      param("speed", Dim::velocity, "cutting speed", 2.0, 0.0, 1000.0, false),
+      param("ramp_fraction", Dim::dimensionless, "fraction of the run over which the speed ramps 0 -> V", 0.3, 0.0, 1.0),
+      param("total_time", Dim::time, "simulated time", 8e-3, 0.0, kInf, false),
+      param("output_interval", Dim::time, "force-history interval (0: total_time/400)", 0.0, 0.0, kInf),
+      param("steady_start_fraction", Dim::dimensionless, "steady window starts at this fraction of the run", 0.5,
            0.0, 1.0),
-      make("steady_end_fraction", Dim::dimensionless, "steady window ends at this fraction of the run", 1.0, 0.0,
+      param("steady_end_fraction", Dim::dimensionless, "steady window ends at this fraction of the run", 1.0, 0.0,
            1.0),
-      make("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 100.0, 0.0,
+      param("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 100.0, 0.0,
            1e9),
-      make("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 1.0, false),
-      make("contact_detection", Dim::dimensionless,
+      param("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 1.0, false),
+      param("contact_detection", Dim::dimensionless,
            "0 = velocity test only, 1 = nodal centres of mass closer than contact_gap_factor*dx, "
            "2 = particle domains touch (within contact_gap_factor*dx)",
            1.0, 0.0, 2.0),
-      make("contact_gap_factor", Dim::dimensionless, "contact distance / tolerance in cells (see contact_detection)",
+      param("contact_gap_factor", Dim::dimensionless, "contact distance / tolerance in cells (see contact_detection)",
            1.0, 0.0, 10.0),
-      make("snapshots", Dim::dimensionless, "number of particle snapshots (evenly spaced, last at the end)", 4.0, 0.0,
+      param("snapshots", Dim::dimensionless, "number of particle snapshots (evenly spaced, last at the end)", 4.0, 0.0,
            1000.0),
-      make("threads", Dim::dimensionless, "OpenMP threads (0 = OMP_NUM_THREADS)", 0.0, 0.0, 1024.0),
+      param("threads", Dim::dimensionless, "OpenMP threads (0 = OMP_NUM_THREADS)", 0.0, 0.0, 1024.0),
   };
 }
 

@@ -181,35 +181,28 @@ SolverSpec detail::cutting_spec() {
   s.description = "Thermo-mechanical SPH orthogonal cutting of Ti6Al4V (rigid tool, Coulomb friction); "
                   "reference (Brookshaw, adiabatic) or enhanced (FMFS + convection/radiation) thermal model";
   s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Sec. 5.2, Fig. 4, Table 1";
-  auto mk = [](const char* name, Dim d, const char* desc, double def, double lo, double hi) {
-    auto p = param(name, d, desc);
-    p.default_value = def;
-    p.min = lo;
-    p.max = hi;
-    return p;
-  };
   const CuttingSetup def;
   s.params = {
-      mk("particles_over_height", Dim::dimensionless, "particles over the workpiece height", def.particles_over_height, 4, 400),
-      mk("length", Dim::length, "workpiece length", def.length, 1e-6, 1.0),
-      mk("height", Dim::length, "workpiece height", def.height, 1e-6, 1.0),
-      mk("uncut_thickness", Dim::length, "uncut chip thickness t_u", def.uncut_thickness, 1e-7, 1.0),
-      mk("cut_distance", Dim::length, "cut distance", def.cut_distance, 1e-7, 1.0),
-      mk("speed", Dim::velocity, "cutting speed v_c", def.speed, 1e-3, 1e3),
-      mk("friction", Dim::dimensionless, "Coulomb friction coefficient", def.friction, 0.0, 2.0),
-      mk("rake", Dim::angle, "rake angle", def.rake, -60 * kDeg, 60 * kDeg),
-      mk("clearance", Dim::angle, "clearance angle", def.clearance, 0.5 * kDeg, 45 * kDeg),
-      mk("edge_radius", Dim::length, "cutting-edge radius", def.edge_radius, 0.0, 1e-3),
-      mk("enhanced_thermal", Dim::dimensionless, "1: FMFS + convection/radiation (paper); 0: reference", 1.0, 0.0, 1.0),
-      mk("brookshaw_band", Dim::dimensionless, "1: Brookshaw on a 2h band at surfaces (energy-conserving variant)", 0.0, 0.0, 1.0),
-      mk("fixed_layers", Dim::dimensionless, "clamped particle layers at the bottom and the far end", def.fixed_layers, 1, 20),
-      mk("tool_conduction", Dim::dimensionless, "1: tool particles conduct heat", 1.0, 0.0, 1.0),
-      mk("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5),
-      mk("tool_depth", Dim::length, "size of the discretised tool band around the edge", def.tool_depth, 1e-6, 1.0),
-      mk("penalty_contact", Dim::dimensionless, "1: penalty + stick-slip friction (default); 0: velocity-level contact", 1.0, 0.0, 1.0),
-      mk("contact_offset", Dim::dimensionless, "contact surface offset in particle spacings", def.contact_offset, 0.0, 1.0),
-      mk("snapshots", Dim::dimensionless, "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
-      mk("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),
+      param("particles_over_height", Dim::dimensionless, "particles over the workpiece height", def.particles_over_height, 4, 400),
+      param("length", Dim::length, "workpiece length", def.length, 1e-6, 1.0),
+      param("height", Dim::length, "workpiece height", def.height, 1e-6, 1.0),
+      param("uncut_thickness", Dim::length, "uncut chip thickness t_u", def.uncut_thickness, 1e-7, 1.0),
+      param("cut_distance", Dim::length, "cut distance", def.cut_distance, 1e-7, 1.0),
+      param("speed", Dim::velocity, "cutting speed v_c", def.speed, 1e-3, 1e3),
+      param("friction", Dim::dimensionless, "Coulomb friction coefficient", def.friction, 0.0, 2.0),
+      param("rake", Dim::angle, "rake angle", def.rake, -60 * kDeg, 60 * kDeg),
+      param("clearance", Dim::angle, "clearance angle", def.clearance, 0.5 * kDeg, 45 * kDeg),
+      param("edge_radius", Dim::length, "cutting-edge radius", def.edge_radius, 0.0, 1e-3),
+      param("enhanced_thermal", Dim::dimensionless, "1: FMFS + convection/radiation (paper); 0: reference", 1.0, 0.0, 1.0),
+      param("brookshaw_band", Dim::dimensionless, "1: Brookshaw on a 2h band at surfaces (energy-conserving variant)", 0.0, 0.0, 1.0),
+      param("fixed_layers", Dim::dimensionless, "clamped particle layers at the bottom and the far end", def.fixed_layers, 1, 20),
+      param("tool_conduction", Dim::dimensionless, "1: tool particles conduct heat", 1.0, 0.0, 1.0),
+      param("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5),
+      param("tool_depth", Dim::length, "size of the discretised tool band around the edge", def.tool_depth, 1e-6, 1.0),
+      param("penalty_contact", Dim::dimensionless, "1: penalty + stick-slip friction (default); 0: velocity-level contact", 1.0, 0.0, 1.0),
+      param("contact_offset", Dim::dimensionless, "contact surface offset in particle spacings", def.contact_offset, 0.0, 1.0),
+      param("snapshots", Dim::dimensionless, "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
+      param("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),
   };
   s.scalars = {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
                {"F_t", Dim::force_per_width, "mean thrust force per unit width (steady part)"},

@@ -136,25 +136,18 @@ SolverSpec detail::heat_spec() {
   s.name = "sph_heat";
   s.description = "SPH transient heat conduction: decaying mode (problem 0) or cooling block (problem 1)";
   s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Eqs. 4, 7, 8, 12, 13; Sec. 4.2";
-  auto mk = [](const char* name, Dim d, const char* desc, double def, double lo, double hi) {
-    auto p = param(name, d, desc);
-    p.default_value = def;
-    p.min = lo;
-    p.max = hi;
-    return p;
-  };
   s.params = {
-      mk("problem", Dim::dimensionless, "0: 2D decaying mode; 1: cooling block", 0.0, 0.0, 1.0),
-      mk("n", Dim::dimensionless, "particles per side", 20.0, 4.0, 400.0),
-      mk("scheme", Dim::dimensionless, "0: FMFS inside / Brookshaw on surface (paper); 1: Brookshaw; 2: Brookshaw band 2h", 0.0, 0.0, 2.0),
-      mk("t_end", Dim::time, "end time", 0.02, 0.0, 1e6),
-      mk("conductivity", Dim::conductivity, "k (problem 1)", 50.0, 1e-6, 1e6),
-      mk("density", Dim::density, "rho (problem 1)", 4430.0, 1e-6, 1e6),
-      mk("specific_heat", Dim::specific_heat, "c_p (problem 1)", 560.0, 1e-6, 1e7),
-      mk("h_conv", Dim::heat_transfer, "convection coefficient (problem 1)", 50.0, 0.0, 1e7),
-      mk("emissivity", Dim::dimensionless, "emissivity (problem 1)", 0.3, 0.0, 1.0),
-      mk("T_ambient", Dim::temperature, "ambient temperature (problem 1)", 300.0, 0.0, 1e4),
-      mk("T_initial", Dim::temperature, "initial temperature (problem 1)", 1000.0, 0.0, 1e4),
+      param("problem", Dim::dimensionless, "0: 2D decaying mode; 1: cooling block", 0.0, 0.0, 1.0),
+      param("n", Dim::dimensionless, "particles per side", 20.0, 4.0, 400.0),
+      param("scheme", Dim::dimensionless, "0: FMFS inside / Brookshaw on surface (paper); 1: Brookshaw; 2: Brookshaw band 2h", 0.0, 0.0, 2.0),
+      param("t_end", Dim::time, "end time", 0.02, 0.0, 1e6),
+      param("conductivity", Dim::conductivity, "k (problem 1)", 50.0, 1e-6, 1e6),
+      param("density", Dim::density, "rho (problem 1)", 4430.0, 1e-6, 1e6),
+      param("specific_heat", Dim::specific_heat, "c_p (problem 1)", 560.0, 1e-6, 1e7),
+      param("h_conv", Dim::heat_transfer, "convection coefficient (problem 1)", 50.0, 0.0, 1e7),
+      param("emissivity", Dim::dimensionless, "emissivity (problem 1)", 0.3, 0.0, 1.0),
+      param("T_ambient", Dim::temperature, "ambient temperature (problem 1)", 300.0, 0.0, 1e4),
+      param("T_initial", Dim::temperature, "initial temperature (problem 1)", 1000.0, 0.0, 1e4),
   };
   s.params[3].min_inclusive = false;
   s.scalars = {{"max_rel_error", Dim::dimensionless, "problem 0: max |T - T_exact| / amplitude"},

@@ -1,3 +1,4 @@
+#include <limits>
 #include <algorithm>
 #include <cmath>
 
@@ -63,28 +64,14 @@ SolverSpec detail::laplacian_spec() {
   s.description = "Reconstruction of the Laplacian of x^2 + y^2 on a particle lattice over [-1,1]^2 "
                   "with the Brookshaw and FMFS operators";
   s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Sec. 5.1, Fig. 3; Eqs. 12-15";
-  auto n = param("n", Dim::dimensionless, "particles per side");
-  n.default_value = 21.0;
-  n.min = 3.0;
-  n.max = 2001.0;
-  auto hr = param("h_over_dx", Dim::dimensionless, "smoothing length over particle spacing");
-  hr.default_value = 1.5;
-  hr.min = 0.5;
-  hr.max = 4.0;
-  auto jit = param("jitter", Dim::dimensionless, "random displacement amplitude as a fraction of dx");
-  jit.default_value = 0.0;
-  jit.min = 0.0;
-  jit.max = 0.5;
-  jit.max_inclusive = false;
-  auto seed = param("seed", Dim::dimensionless, "jitter random seed");
-  seed.default_value = 1.0;
-  seed.min = 0.0;
-  auto scheme = param("scheme", Dim::dimensionless,
-                      "0: both operators; 1: Brookshaw only; 2: FMFS only (the other column is NaN)");
-  scheme.default_value = 0.0;
-  scheme.min = 0.0;
-  scheme.max = 2.0;
-  s.params = {n, hr, jit, seed, scheme};
+  s.params = {
+      param("n", Dim::dimensionless, "particles per side", 21.0, 3.0, 2001.0),
+      param("h_over_dx", Dim::dimensionless, "smoothing length over particle spacing", 1.5, 0.5, 4.0),
+      param("jitter", Dim::dimensionless, "random displacement amplitude as a fraction of dx", 0.0, 0.0, 0.5, true,
+            false),
+      param("seed", Dim::dimensionless, "jitter random seed", 1.0, 0.0, std::numeric_limits<double>::infinity()),
+      param("scheme", Dim::dimensionless, "0: both operators; 1: Brookshaw only; 2: FMFS only (the other column is NaN)",
+            0.0, 0.0, 2.0)};
   s.scalars = {
       {"brookshaw_interior_mean", Dim::dimensionless, "mean Brookshaw Laplacian over |x|,|y| <= 0.8 (paper 4.027)"},
       {"brookshaw_interior_max_abs_error", Dim::dimensionless, "max |Brookshaw - 4| over |x|,|y| <= 0.8"},

@@ -52,6 +52,10 @@ struct ModelSpec {
 
 // Range helpers for ParamSpec definitions.
 ParamSpec param(std::string name, Dim dim, std::string description);
+// A parameter with its default and admissible range in one call. default_value: SI; NaN = optional
+// and unset; std::nullopt = required.
+ParamSpec param(std::string name, Dim dim, std::string description, std::optional<double> default_value,
+                double min, double max, bool min_inclusive = true, bool max_inclusive = true);
 ParamSpec& positive(ParamSpec& p);
 ParamSpec& non_negative(ParamSpec& p);
 

@@ -66,6 +66,7 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   tool.vertices = {E, E + Vec2(-T * std::tan(s.rake), T), E + Vec2(-W, T), E + Vec2(-W, W * std::tan(s.clearance))};
   tool.velocity = Vec2(V, 0.0);
   tool.mu = s.mu;
+  tool.ramp_time = s.ramp_transits * Ly / s.material.wave_speed();
   solver.set_tool(tool);
 
   CuttingResult r;
@@ -74,11 +75,13 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   r.hx = hx;
   r.hy = hy;
   r.y_edge = yE;
-  r.t_contact_expected = gap / V;
+  // Contact when the tool has moved by the gap (during or after the ramp).
+  r.t_contact_expected = gap < 0.5 * V * tool.ramp_time ? std::sqrt(2.0 * gap * tool.ramp_time / V)
+                                                         : gap / V + 0.5 * tool.ramp_time;
   r.dt_initial = solver.critical_time_step() * s.cfl;
   r.dt_min = r.dt_initial;
-  const double t_end = r.t_contact_expected + s.travel / V;
-  auto travel_at = [&](double t) { return std::max(0.0, V * t - gap); };
+  auto travel_at = [&](double t) { return std::max(0.0, tool.displacement(t).x() - gap); };
+  const double t_end = (s.travel + gap) / V + 0.5 * tool.ramp_time;
   Vec2 acc = Vec2::Zero(), acc_all = Vec2::Zero();
   double tacc = 0.0, tacc_all = 0.0;
   int nacc = 0;
@@ -100,6 +103,51 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     }
     cand.push_back(std::move(sn));
   };
+  // Gauss-point adjacency in the reference configuration (for the damage-path guard).
+  const double hmax = std::max(hx, hy);
+  std::vector<std::vector<int>> nbr(d.gauss.size());
+  {
+    std::vector<Vec2> gx(d.gauss.size());
+    for (std::size_t g = 0; g < gx.size(); ++g) gx[g] = d.gauss[g].x;
+    CellList cl;
+    cl.build(gx, 0.75 * hmax);
+    std::vector<int> near;
+    for (std::size_t g = 0; g < gx.size(); ++g) {
+      cl.query(gx[g], 0.75 * hmax, near);
+      for (int k : near) {
+        if (k != static_cast<int>(g) && (gx[k] - gx[g]).norm() < 0.75 * hmax) nbr[g].push_back(k);
+      }
+    }
+  }
+  std::vector<char> seen(d.gauss.size());
+  std::vector<int> queue;
+  auto damage_path = [&]() {
+    std::fill(seen.begin(), seen.end(), 0);
+    queue.clear();
+    for (std::size_t g = 0; g < d.gauss.size(); ++g) {
+      const Vec2& X = d.gauss[g].x;
+      const auto dm = solver.damage(g);
+      if ((dm[0] > 0.5 || dm[1] > 0.5) && X.y() > yE && X.y() < yE + 1.5 * hy && X.x() > cut_tip - hx &&
+          X.x() < cut_tip + 1.5 * hx) {
+        seen[g] = 1;
+        queue.push_back(static_cast<int>(g));
+      }
+    }
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const int g = queue[q];
+      if (d.gauss[g].x.y() > Ly - 0.5 * hy) return true;
+      for (int k : nbr[g]) {
+        if (seen[k]) continue;
+        const auto dm = solver.damage(k);
+        if (dm[0] > 0.5 || dm[1] > 0.5) {
+          seen[k] = 1;
+          queue.push_back(k);
+        }
+      }
+    }
+    return false;
+  };
+  bool path = false;
   while (solver.time() < t_end) {
     const double dt = solver.step();
     r.dt_min = std::min(r.dt_min, dt);
@@ -107,9 +155,12 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     const double trav = travel_at(solver.time());
     // Chip completion: sudden drop of the Eq 56 step below its running mean (section 5.4).
     if (s.drop > 0.0 && trav >= s.min_travel && dt < (1.0 - s.drop) * ema) {
-      r.t_complete = solver.time();
-      r.travel_complete = trav;
-      r.dt_drop_ratio = dt / ema;
+      if (r.travel_first_drop < 0.0) r.travel_first_drop = trav;
+      if (!s.completion_guard || path) {
+        r.t_complete = solver.time();
+        r.travel_complete = trav;
+        r.dt_drop_ratio = dt / ema;
+      }
     }
     ema += (dt - ema) / std::max(1, s.drop_window);
     const Vec2 f = solver.tool_force();
@@ -122,7 +173,7 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     // Cut line: the tool edge separates the chip from the machined surface; the cut reaches the
     // reference position of the surface-row material the edge has passed (interpolated).
     if (s.visibility) {
-      const double xe = E.x() + V * solver.time();
+      const double xe = E.x() + tool.displacement(solver.time()).x();
       const auto& xs = solver.positions();
       double tip = cut_tip;
       for (std::size_t k = 0; k + 1 < surface_row.size(); ++k) {
@@ -149,6 +200,10 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
       tacc = 0.0;
       nacc = 0;
       if (progress) progress(solver.time() / t_end);
+      if (!path && r.t_contact >= 0.0 && damage_path()) {
+        path = true;
+        r.travel_path = trav;
+      }
       if (s.snapshots > 0 && trav >= next_snap) {
         take_snapshot();
         next_snap = trav + 0.25 * hx;

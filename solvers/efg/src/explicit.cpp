@@ -191,7 +191,8 @@ void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
   ncontact_ = nstick_ = 0;
   if (!has_tool_) return;
   const std::size_t nv = tool_.vertices.size();
-  const Vec2 shift = tool_.velocity * (t_ + dt);  // tool at t^{n+1}
+  const Vec2 shift = tool_.displacement(t_ + dt);  // tool at t^{n+1}
+  const Vec2 vtool = (shift - tool_.displacement(t_)) / dt;
   std::vector<Vec2> v(nv);
   Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);
   for (std::size_t k = 0; k < nv; ++k) {
@@ -221,7 +222,7 @@ void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
     const Vec2 n(t.y(), -t.x());  // outward normal of the face
     const double M = mass_[I];
     const double fn = 2.0 * M * gmin / (dt * dt);                       // Eq 39
-    const double gt = (dt * vhalf[I] - dt * tool_.velocity).dot(t);  // tangential slip in the step
+    const double gt = (dt * vhalf[I] - dt * vtool).dot(t);  // tangential slip in the step
     // Eq 40 with the factor 2 of Eq 39: both trial forces act through the half step of Eq 48,
     // so this stick force removes the step's tangential slip exactly, and the stick/slip
     // comparison compares like with like (README: contact).

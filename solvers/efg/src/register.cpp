@@ -171,6 +171,7 @@ void register_solvers(SolverRegistry& registry) {
                  p("speed", Dim::velocity, "cutting speed (Table 3: 3800 mm/min)", 3800e-3 / 60.0, 0, inf),
                  p("time_scale", Dim::dimensionless, "tool speed multiplier (time scaling)", 50, 1, 1e4),
                  p("travel", Dim::length, "maximum tool travel after first contact", 0.3e-3, 0, inf),
+                 p("ramp_transits", Dim::dimensionless, "tool speed ramp, in wave transits of the workpiece height", 50, 0, 1e4),
                  p("mu", Dim::dimensionless, "rake-face friction coefficient (assumption)", 0.3, 0, 2),
                  p("clearance", Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
                  p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1),
@@ -179,6 +180,7 @@ void register_solvers(SolverRegistry& registry) {
                  p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99),
                  p("drop_window", Dim::dimensionless, "steps of the running mean of dt", 200, 1, 1e6),
                  p("min_travel", Dim::length, "no chip-completion detection before this travel", 0.0, 0, inf),
+                 p("completion_guard", Dim::dimensionless, "1: a drop counts only once damage connects edge and free surface", 1, 0, 1),
                  p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0),
                  p("snapshots", Dim::dimensionless, "damage snapshots kept (k/n of the run)", 3, 0, 20)}) {
     cut.params.push_back(q);
@@ -190,6 +192,8 @@ void register_solvers(SolverRegistry& registry) {
                  {"t_complete", Dim::time, "chip completion from the Eq 56 step drop (-1: none)"},
                  {"travel_complete", Dim::length, "tool travel at chip completion (-1: none)"},
                  {"chip_complete", Dim::dimensionless, "1 when the time-step drop was detected"},
+                 {"travel_path", Dim::length, "travel at which damage first connects the edge to the free surface (-1: never)"},
+                 {"travel_first_drop", Dim::length, "travel of the first time-step drop, guard or not (-1: none)"},
                  {"dt_drop_ratio", Dim::dimensionless, "dt / running mean at detection (1: none)"},
                  {"dt_min_ratio", Dim::dimensionless, "smallest / initial time step"},
                  {"fibre_damaged_fraction", Dim::dimensionless, "Gauss points with fibre damage"},
@@ -242,6 +246,7 @@ void register_solvers(SolverRegistry& registry) {
     s.speed = v.at("speed");
     s.time_scale = v.at("time_scale");
     s.travel = v.at("travel");
+    s.ramp_transits = v.at("ramp_transits");
     s.mu = v.at("mu");
     s.clearance = v.at("clearance");
     s.residual = v.at("residual");
@@ -250,6 +255,7 @@ void register_solvers(SolverRegistry& registry) {
     s.drop = v.at("drop");
     s.drop_window = static_cast<int>(std::lround(v.at("drop_window")));
     s.min_travel = v.at("min_travel");
+    s.completion_guard = v.at("completion_guard") > 0.5;
     s.cfl = v.at("cfl");
     s.snapshots = static_cast<int>(std::lround(v.at("snapshots")));
     const auto t0 = std::chrono::steady_clock::now();
@@ -285,6 +291,8 @@ void register_solvers(SolverRegistry& registry) {
                    {"t_complete", r.t_complete},
                    {"travel_complete", r.travel_complete},
                    {"chip_complete", r.t_complete >= 0.0 ? 1.0 : 0.0},
+                   {"travel_path", r.travel_path},
+                   {"travel_first_drop", r.travel_first_drop},
                    {"dt_drop_ratio", r.dt_drop_ratio},
                    {"dt_min_ratio", r.dt_min / r.dt_initial},
                    {"fibre_damaged_fraction", static_cast<double>(r.fibre_damaged) / ng},

@@ -64,10 +64,20 @@ enum DamageMode : int { fibre_damage = 0, matrix_damage = 1, interface_damage = 
 // f_t = 2 M g_t / dt^2 (Eq 40 with the same factor, removes the step's slip), slip trial mu f_n
 // (Eq 41), stick when the stick trial is the smaller (Eqs 42-43); no penalty parameter. The
 // reported tool force is the momentum exchanged per step over dt (half the Eq 39 value).
+// The velocity may be ramped linearly from zero over `ramp_time` (a quasi-static start: a tool
+// hitting the workpiece at full speed launches a stress wave of rho c |v|).
 struct RigidTool {
   std::vector<Vec2> vertices;
   Vec2 velocity = Vec2::Zero();
   double mu = 0.0;
+  double ramp_time = 0.0;
+  Vec2 velocity_at(double t) const {
+    return ramp_time > 0.0 && t < ramp_time ? Vec2(velocity * (t / ramp_time)) : velocity;
+  }
+  Vec2 displacement(double t) const {
+    if (ramp_time > 0.0 && t < ramp_time) return velocity * (0.5 * t * t / ramp_time);
+    return velocity * (t - 0.5 * ramp_time);
+  }
 };
 
 struct ExplicitOptions {

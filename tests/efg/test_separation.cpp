@@ -169,3 +169,27 @@ BOOST_AUTO_TEST_CASE(no_force_across_a_cut_failed_band) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(efg_tool_ramp)
+
+BOOST_AUTO_TEST_CASE(ramped_tool_motion_is_continuous) {
+  // Linear speed ramp over T: x(t) = V t^2/(2T) before T, V (t - T/2) after; continuous in
+  // position and velocity at T, and the velocity is the derivative of the displacement.
+  RigidTool tool;
+  tool.velocity = Vec2(2.0, 0.0);
+  tool.ramp_time = 1e-3;
+  const double T = tool.ramp_time, V = 2.0;
+  BOOST_TEST(tool.displacement(0.0).norm() == 0.0);
+  BOOST_TEST(std::abs(tool.displacement(0.5 * T).x() - V * 0.125 * T) < 1e-15);
+  BOOST_TEST(std::abs(tool.displacement(T).x() - 0.5 * V * T) < 1e-15);
+  BOOST_TEST(std::abs(tool.displacement(3 * T).x() - 2.5 * V * T) < 1e-15);
+  for (double t : {0.3 * T, 0.999 * T, 1.5 * T}) {
+    const double h = 1e-9;
+    const double fd = (tool.displacement(t + h).x() - tool.displacement(t - h).x()) / (2 * h);
+    BOOST_TEST(std::abs(fd - tool.velocity_at(t).x()) < 1e-6 * V);
+  }
+  tool.ramp_time = 0.0;
+  BOOST_TEST(std::abs(tool.displacement(T).x() - V * T) < 1e-15);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

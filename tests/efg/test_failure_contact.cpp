@@ -299,13 +299,14 @@ BOOST_AUTO_TEST_CASE(pressed_block_reported_forces_equal_loads) {
 
 BOOST_AUTO_TEST_SUITE_END()
 
-BOOST_AUTO_TEST_SUITE(cutting_prototype)
+BOOST_AUTO_TEST_SUITE(cutting_setup)
 
 BOOST_AUTO_TEST_CASE(tool_engages_at_gap_over_speed) {
-  // Smoke test of the PROTOTYPE cutting set-up (coarse, 10 um of travel): the tool first touches
-  // the workpiece within one step of gap/speed, the workpiece resists the advance (F_c > 0), the
-  // thrust pushes the tool away (F_t > 0) and LaRC02 damages Gauss points ahead of the edge.
-  // These are sanity checks, not a reproduction of Kahwash Tables 4-6.
+  // Smoke test of the cutting set-up (coarse, 10 um of travel): the tool first touches the
+  // workpiece within one step of gap/speed, the workpiece resists the advance (F_c > 0), the
+  // thrust is smaller than the cutting force (0 deg rake: only friction on the rake face) and
+  // LaRC02 damages Gauss points ahead of the edge. Sanity checks, not a reproduction of Kahwash
+  // Tables 4-6 (those are the kahwash2018 cases).
   CuttingSetup s;
   s.lamina = gfrp_lamina();
   s.theta = 30.0 * kPi / 180.0;
@@ -321,7 +322,7 @@ BOOST_AUTO_TEST_CASE(tool_engages_at_gap_over_speed) {
   BOOST_TEST(r.t_contact >= r.t_contact_expected);
   BOOST_TEST(r.t_contact < r.t_contact_expected + 1.01 * r.dt_initial);
   BOOST_TEST(r.Fc_mean > 0.0);
-  BOOST_TEST(r.Ft_mean > 0.0);
+  BOOST_TEST(std::abs(r.Ft_mean) < r.Fc_mean);
   BOOST_TEST(r.fibre_damaged + r.matrix_damaged > 0u);
 }
 

@@ -1,5 +1,6 @@
 #include "cutbench/efg/cutting.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "cutbench/common/errors.hpp"
@@ -7,10 +8,22 @@
 namespace cutbench::efg {
 
 CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double)>& progress) {
+  if (!(s.depth > 0.0)) throw InputError("depth", "must be > 0");
   if (s.depth >= s.work_height) throw InputError("depth", "must be smaller than the workpiece height");
-  const int nx = static_cast<int>(std::lround(s.work_length / s.spacing)) + 1;
-  const int ny = static_cast<int>(std::lround(s.work_height / s.spacing)) + 1;
-  const Discretisation d = rectangle(s.work_length, s.work_height, nx, ny, s.support_factor);
+  if (!(s.spacing > 0.0) || s.spacing > 0.5 * s.depth) throw InputError("spacing", "must be in (0, depth/2]");
+  if (!(s.notch > 0.0) || s.notch >= s.work_length) throw InputError("notch", "must be in (0, work_length)");
+  if (s.drop < 0.0 || s.drop >= 1.0) throw InputError("drop", "must be in [0, 1)");
+  // Lattice: columns at hx = spacing; rows at hy = depth/(nd + 1/2) so that the cut line
+  // y_E = H - depth lies half-way between two rows (no node on the cut line).
+  const double hx = s.spacing;
+  const int nd = std::max(2, static_cast<int>(std::lround(s.depth / s.spacing)));
+  const double hy = s.depth / (nd + 0.5);
+  const int nx = static_cast<int>(std::lround(s.work_length / hx)) + 1;
+  const int ny = std::max(nd + 3, static_cast<int>(std::lround(s.work_height / hy)) + 1);
+  const double Lx = (nx - 1) * hx, Ly = (ny - 1) * hy;
+  const double yE = Ly - s.depth;
+  const double x0 = std::max(1.0, std::round(s.notch / hx)) * hx;
+  const Discretisation d = notched_rectangle(Lx, Ly, nx, ny, s.support_factor, x0, yE);
   ExplicitOptions opt;
   opt.kinematics = s.kinematics;
   opt.update_interval = s.update_interval;
@@ -19,84 +32,225 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   opt.failure.criterion = s.criterion;
   opt.failure.lamina = s.lamina;
   opt.failure.residual = s.residual;
-  // Fibre direction (cos theta, -sin theta): clockwise from the cutting direction.
-  ExplicitEFG solver(d, s.material, -s.theta, opt);
-  // Workpiece held on its bottom and right-hand faces.
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      if (j == 0 || i == nx - 1) {
-        solver.add_velocity_bc(j * nx + i, 0, [](double) { return 0.0; });
-        solver.add_velocity_bc(j * nx + i, 1, [](double) { return 0.0; });
-      }
+  opt.erosion = s.erosion;
+  // Fibres along (cos theta, sin theta) with the tool moving +x: for 0 < theta < 90 deg they rise
+  // ahead of the tool from the edge to the free surface, the path along which the paper's chips
+  // separate (sections 5.2 and 6).
+  ExplicitEFG solver(d, s.material, s.theta, opt);
+  const double tol = 1e-9 * Lx;
+  std::vector<int> surface_row;  // nodes of the row just below the cut line, by x
+  for (std::size_t I = 0; I < d.nodes.size(); ++I) {
+    const Vec2& X = d.nodes[I];
+    if (X.y() < tol || X.x() > Lx - tol) {  // held on the bottom and the far end
+      solver.add_velocity_bc(static_cast<int>(I), 0, [](double) { return 0.0; });
+      solver.add_velocity_bc(static_cast<int>(I), 1, [](double) { return 0.0; });
     }
+    if (std::abs(X.y() - (yE - 0.5 * hy)) < 1e-6 * hy) surface_row.push_back(static_cast<int>(I));
   }
-  // Tool: cutting edge at (x_e, H - depth), rake face at angle `rake` from the vertical, clearance
-  // face rising backwards at `clearance`; moves along +x.
+  std::sort(surface_row.begin(), surface_row.end(),
+            [&](int a, int b) { return d.nodes[a].x() < d.nodes[b].x(); });
+  // Visibility: the re-entrant corner of the notch (its floor and its face, a quarter spacing
+  // inside the void) hides nodes across the void from the chip root.
+  const double xf = x0 - 0.25 * hx;
+  if (s.visibility) {
+    solver.add_opaque_segment({Vec2(-hx, yE), Vec2(xf, yE)});
+    solver.add_opaque_segment({Vec2(xf, yE), Vec2(xf, Ly + hx)});
+  }
+  // Tool: cutting edge at (x_E, y_E), rake face at `rake` from the vertical, clearance face
+  // rising backwards at `clearance`; moves along +x. Starts a quarter spacing from the chip.
   const double V = s.speed * s.time_scale;
-  const double gap = 0.25 * s.spacing;
-  const double yE = s.work_height - s.depth;
+  const double gap = 0.25 * hx;
   const double T = 4.0 * s.work_height, W = 4.0 * s.work_height;
-  const Vec2 E(-gap, yE);
+  const Vec2 E(x0 - gap, yE);
   RigidTool tool;
   tool.vertices = {E, E + Vec2(-T * std::tan(s.rake), T), E + Vec2(-W, T), E + Vec2(-W, W * std::tan(s.clearance))};
   tool.velocity = Vec2(V, 0.0);
   tool.mu = s.mu;
+  tool.ramp_time = s.ramp_transits * Ly / s.material.wave_speed();
   solver.set_tool(tool);
 
   CuttingResult r;
-  r.nodes = nx * ny;
+  r.nodes = static_cast<int>(d.nodes.size());
   r.gauss = solver.num_gauss();
-  r.t_contact_expected = gap / V;
+  r.hx = hx;
+  r.hy = hy;
+  r.y_edge = yE;
+  // Contact when the tool has moved by the gap (during or after the ramp).
+  r.t_contact_expected = gap < 0.5 * V * tool.ramp_time ? std::sqrt(2.0 * gap * tool.ramp_time / V)
+                                                         : gap / V + 0.5 * tool.ramp_time;
   r.dt_initial = solver.critical_time_step() * s.cfl;
   r.dt_min = r.dt_initial;
-  const double t_end = r.t_contact_expected + s.travel / V;
-  Vec2 acc = Vec2::Zero();
-  double tacc = 0.0;
+  auto travel_at = [&](double t) { return std::max(0.0, tool.displacement(t).x() - gap); };
+  const double t_end = (s.travel + gap) / V + 0.5 * tool.ramp_time;
+  Vec2 acc = Vec2::Zero(), acc_all = Vec2::Zero();
+  double tacc = 0.0, tacc_all = 0.0;
   int nacc = 0;
+  double ema = r.dt_initial;
+  double cut_tip = xf;  // reference x of the cut line's end
+  std::vector<CuttingSnapshot> cand;
+  double next_snap = 0.0;
+  auto take_snapshot = [&]() {
+    CuttingSnapshot sn;
+    sn.t = solver.time();
+    sn.travel = travel_at(sn.t);
+    for (std::size_t g = 0; g < solver.num_gauss(); ++g) {
+      const Vec2 x = solver.gauss_position(g);
+      const auto dm = solver.damage(g);
+      sn.x.push_back(x.x());
+      sn.y.push_back(x.y());
+      sn.fibre.push_back(dm[0]);
+      sn.matrix.push_back(dm[1]);
+    }
+    cand.push_back(std::move(sn));
+  };
+  // Gauss-point adjacency in the reference configuration (for the damage-path guard).
+  const double hmax = std::max(hx, hy);
+  std::vector<std::vector<int>> nbr(d.gauss.size());
+  {
+    std::vector<Vec2> gx(d.gauss.size());
+    for (std::size_t g = 0; g < gx.size(); ++g) gx[g] = d.gauss[g].x;
+    CellList cl;
+    cl.build(gx, 0.75 * hmax);
+    std::vector<int> near;
+    for (std::size_t g = 0; g < gx.size(); ++g) {
+      cl.query(gx[g], 0.75 * hmax, near);
+      for (int k : near) {
+        if (k != static_cast<int>(g) && (gx[k] - gx[g]).norm() < 0.75 * hmax) nbr[g].push_back(k);
+      }
+    }
+  }
+  std::vector<char> seen(d.gauss.size());
+  std::vector<int> queue;
+  auto damage_path = [&]() {
+    std::fill(seen.begin(), seen.end(), 0);
+    queue.clear();
+    for (std::size_t g = 0; g < d.gauss.size(); ++g) {
+      const Vec2& X = d.gauss[g].x;
+      const auto dm = solver.damage(g);
+      if ((dm[0] > 0.5 || dm[1] > 0.5) && X.y() > yE && X.y() < yE + 1.5 * hy && X.x() > cut_tip - hx &&
+          X.x() < cut_tip + 1.5 * hx) {
+        seen[g] = 1;
+        queue.push_back(static_cast<int>(g));
+      }
+    }
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const int g = queue[q];
+      if (d.gauss[g].x.y() > Ly - 0.5 * hy) return true;
+      for (int k : nbr[g]) {
+        if (seen[k]) continue;
+        const auto dm = solver.damage(k);
+        if (dm[0] > 0.5 || dm[1] > 0.5) {
+          seen[k] = 1;
+          queue.push_back(k);
+        }
+      }
+    }
+    return false;
+  };
+  bool path = false;
   while (solver.time() < t_end) {
     const double dt = solver.step();
     r.dt_min = std::min(r.dt_min, dt);
-    if (r.t_dt_drop < 0 && dt < 0.5 * r.dt_initial) r.t_dt_drop = solver.time();
-    if (dt < 0.05 * r.dt_initial) break;  // nodes collapsing: chip complete or run broken (Fig 10)
     if (r.t_contact < 0 && solver.contact_count() > 0) r.t_contact = solver.time();
-    acc += solver.tool_force() * dt;
+    const double trav = travel_at(solver.time());
+    // Chip completion: sudden drop of the Eq 56 step below its running mean (section 5.4).
+    if (s.drop > 0.0 && trav >= s.min_travel && dt < (1.0 - s.drop) * ema) {
+      if (r.travel_first_drop < 0.0) r.travel_first_drop = trav;
+      if (!s.completion_guard || path) {
+        r.t_complete = solver.time();
+        r.travel_complete = trav;
+        r.dt_drop_ratio = dt / ema;
+      }
+    }
+    ema += (dt - ema) / std::max(1, s.drop_window);
+    const Vec2 f = solver.tool_force();
+    acc += f * dt;
     tacc += dt;
-    if (++nacc == s.record_every) {
+    if (r.t_contact >= 0) {
+      acc_all += f * dt;
+      tacc_all += dt;
+    }
+    // Cut line: the tool edge separates the chip from the machined surface; the cut reaches the
+    // reference position of the surface-row material the edge has passed (interpolated).
+    if (s.visibility) {
+      const double xe = E.x() + tool.displacement(solver.time()).x();
+      const auto& xs = solver.positions();
+      double tip = cut_tip;
+      for (std::size_t k = 0; k + 1 < surface_row.size(); ++k) {
+        const int a = surface_row[k], b = surface_row[k + 1];
+        if (xs[a].x() <= xe && xs[b].x() > xe) {
+          const double u = (xe - xs[a].x()) / (xs[b].x() - xs[a].x());
+          tip = d.nodes[a].x() + u * (d.nodes[b].x() - d.nodes[a].x());
+          break;
+        }
+      }
+      if (tip >= cut_tip + 0.5 * hx) {
+        solver.add_opaque_segment({Vec2(cut_tip, yE), Vec2(tip, yE)});
+        cut_tip = tip;
+      }
+    }
+    if (++nacc == s.record_every || r.t_complete >= 0.0) {
       r.t.push_back(solver.time());
+      r.travel.push_back(trav);
       r.Fc.push_back(-acc.x() / tacc);  // resistance of the workpiece to the tool's advance
       r.Ft.push_back(acc.y() / tacc);   // thrust: pushes the tool away from the workpiece (+y)
       r.dt.push_back(dt);
+      r.Fc_peak = std::max(r.Fc_peak, r.Fc.back());
       acc.setZero();
       tacc = 0.0;
       nacc = 0;
       if (progress) progress(solver.time() / t_end);
+      if (!path && r.t_contact >= 0.0 && damage_path()) {
+        path = true;
+        r.travel_path = trav;
+      }
+      if (s.snapshots > 0 && trav >= next_snap) {
+        take_snapshot();
+        next_snap = trav + 0.25 * hx;
+      }
     }
+    if (r.t_complete >= 0.0) break;
+    if (dt < 1e-3 * r.dt_initial) break;  // collapsed nodes: run broken
   }
   r.steps = solver.steps();
-  const double t_half = r.t_contact_expected + 0.5 * s.travel / V;
-  int n = 0;
-  for (std::size_t k = 0; k < r.t.size(); ++k) {
-    if (r.t[k] >= t_half) {
-      r.Fc_mean += r.Fc[k];
-      r.Ft_mean += r.Ft[k];
-      ++n;
+  if (tacc_all > 0.0) {
+    r.Fc_mean = -acc_all.x() / tacc_all;
+    r.Ft_mean = acc_all.y() / tacc_all;
+  }
+  // Final state and the snapshots nearest k/n of the run.
+  take_snapshot();
+  if (s.snapshots > 0) {
+    const double tr_end = cand.back().travel;
+    for (int k = 1; k <= s.snapshots; ++k) {
+      const double target = tr_end * k / s.snapshots;
+      std::size_t best = 0;
+      for (std::size_t c = 0; c < cand.size(); ++c) {
+        if (std::abs(cand[c].travel - target) < std::abs(cand[best].travel - target)) best = c;
+      }
+      r.snapshots.push_back(cand[best]);
     }
   }
-  if (n > 0) {
-    r.Fc_mean /= n;
-    r.Ft_mean /= n;
-  }
+  const double tr_end = travel_at(solver.time());
+  const double cot = std::abs(std::tan(s.theta)) > 1e-12 ? 1.0 / std::tan(s.theta) : 1e12;
   for (std::size_t g = 0; g < solver.num_gauss(); ++g) {
     const auto dm = solver.damage(g);
     r.fibre_damaged += dm[0] > 0.5;
     r.matrix_damaged += dm[1] > 0.5;
     r.interface_damaged += dm[2] > 0.5;
-    const Vec2 x = solver.gauss_position(g);
-    r.gx.push_back(x.x());
-    r.gy.push_back(x.y());
-    r.dfibre.push_back(dm[0]);
-    r.dmatrix.push_back(dm[1]);
+    r.eroded += solver.eroded(g);
+    const Vec2& X = d.gauss[g].x;  // reference position (total Lagrangian)
+    if (X.y() > yE && X.x() >= x0 && (cot <= 0.0 || X.x() - (x0 + tr_end) <= (X.y() - yE) * cot)) {
+      ++r.chip_gauss;
+      r.chip_fibre += dm[0] > 0.5;
+      r.chip_matrix += dm[1] > 0.5;
+    }
+    if (X.y() < yE && X.y() > yE - s.depth && X.x() >= x0 && X.x() <= x0 + tr_end + s.depth) {
+      ++r.sub_gauss;
+      r.sub_fibre += dm[0] > 0.5;
+      r.sub_matrix += dm[1] > 0.5;
+    }
   }
+  r.released = solver.released_count();
   return r;
 }
 

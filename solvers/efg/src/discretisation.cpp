@@ -90,6 +90,42 @@ Discretisation rectangle(double Lx, double Ly, int nx, int ny, double support_fa
   return d;
 }
 
+Discretisation notched_rectangle(double Lx, double Ly, int nx, int ny, double support_factor, double notch_x,
+                                 double notch_y, int ng) {
+  const Discretisation full = rectangle(Lx, Ly, nx, ny, support_factor, 0.0, 1, ng);
+  const double tol = 1e-9 * std::max(Lx, Ly);
+  auto removed = [&](const Vec2& p) { return p.x() < notch_x - tol && p.y() > notch_y + tol; };
+  Discretisation d;
+  d.spacing = full.spacing;
+  std::vector<int> map(full.nodes.size(), -1);
+  for (std::size_t I = 0; I < full.nodes.size(); ++I) {
+    if (removed(full.nodes[I])) continue;
+    map[I] = static_cast<int>(d.nodes.size());
+    d.nodes.push_back(full.nodes[I]);
+    d.cell_vertices.push_back(full.cell_vertices[I]);
+    d.support.push_back(full.support[I]);
+  }
+  std::vector<int> cmap(full.cells.size(), -1);
+  for (std::size_t c = 0; c < full.cells.size(); ++c) {
+    std::array<int, 4> v{};
+    bool keep = true;
+    for (int k = 0; k < 4; ++k) {
+      v[k] = map[full.cells[c][k]];
+      keep = keep && v[k] >= 0;
+    }
+    if (!keep) continue;
+    cmap[c] = static_cast<int>(d.cells.size());
+    d.cells.push_back(v);
+  }
+  for (const auto& g : full.gauss) {
+    if (cmap[g.cell] < 0) continue;
+    GaussPoint q = g;
+    q.cell = cmap[g.cell];
+    d.gauss.push_back(q);
+  }
+  return d;
+}
+
 std::vector<GaussPoint> line_gauss(const Vec2& a, const Vec2& b, int nseg, int ng) {
   std::vector<double> xi, wg;
   gauss_legendre(ng, xi, wg);
@@ -110,7 +146,7 @@ std::vector<GaussPoint> line_gauss(const Vec2& a, const Vec2& b, int nseg, int n
 
 std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const std::vector<Vec2>& nodes,
                                        const std::vector<double>& support, const WeightParams& weight,
-                                       bool derivatives) {
+                                       bool derivatives, const std::vector<Segment>& opaque) {
   const double dmax = *std::max_element(support.begin(), support.end());
   CellList cl;
   cl.build(nodes, dmax);
@@ -124,6 +160,7 @@ std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const st
 #pragma omp for schedule(static)
     for (long k = 0; k < n; ++k) {
       cl.query(points[k], dmax, cand);
+      visibility_filter(points[k], nodes, opaque, cand);
       if (!mls_shape(points[k], nodes, support, cand, weight, out[k], derivatives)) {
 #pragma omp critical
         {

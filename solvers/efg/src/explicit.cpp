@@ -29,6 +29,8 @@ ExplicitEFG::ExplicitEFG(const Discretisation& d, const Orthotropic& mat, double
   fint_.assign(n, Vec2::Zero());
   fext_.assign(n, Vec2::Zero());
   mass_.assign(n, 0.0);
+  active_.assign(n, 1);
+  xactive_.reserve(n);
   std::vector<Vec2> pts;
   for (const auto& g : d.gauss) pts.push_back(g.x);
   auto sf = shape_functions(pts, X0_, support_, opt_.weight, true);
@@ -78,6 +80,10 @@ void ExplicitEFG::compute_internal_forces() {
 #pragma omp parallel for schedule(static) if (ng > 20000)
   for (long g = 0; g < ng; ++g) {
     GP& q = gp_[g];
+    if (q.eroded) {
+      P[g].setZero();
+      continue;
+    }
     // F_inc = I + sum_I (x_I - x_I^r) (grad_r phi_I)^T: the identity is exact, not the sum of
     // large coordinates times derivatives (which loses digits far from the origin).
     Mat2 Finc = Mat2::Identity();
@@ -101,7 +107,18 @@ void ExplicitEFG::compute_internal_forces() {
       const Mat2 S = voigt_to_tensor(q.S);
       P[g] = Finc * (q.Fr * S * q.Fr.transpose()) / q.Fr.determinant();
     }
+    if (opt_.erosion != Erosion::none) {
+      const bool f = q.damage[fibre_damage] > 0.0, m = q.damage[matrix_damage] > 0.0;
+      if (opt_.erosion == Erosion::fibre_and_matrix ? (f && m) : (f || m)) {
+        q.eroded = true;
+        q.S.setZero();
+        P[g].setZero();
+#pragma omp atomic write
+        erosion_changed_ = true;
+      }
+    }
   }
+  if (erosion_changed_) update_release();
   for (auto& f : fint_) f.setZero();
   for (std::size_t g = 0; g < gp_.size(); ++g) {
     const GP& q = gp_[g];
@@ -143,23 +160,30 @@ bool ExplicitEFG::update_damage(GP& q) const {
       changed = true;
     }
   }
-  if (changed) {
-    Orthotropic m = mat_;
-    const double r = fo.residual;
-    if (q.damage[fibre_damage] > 0.0) {
-      m.E1 *= r;
-      m.G12 *= r;
-      m.nu12 *= r;
-    }
-    if (q.damage[matrix_damage] > 0.0) {
-      m.E2 *= r;
-      m.G12 *= r;
-      m.nu12 *= r;
-    }
-    if (q.damage[interface_damage] > 0.0) m.G12 *= r;
-    q.Qd = m.Qbar(theta_);
-  }
+  if (changed) q.Qd = degraded_stiffness(q.damage);
   return changed;
+}
+
+Eigen::Matrix3d ExplicitEFG::degraded_stiffness(const std::array<double, 3>& damage) const {
+  Orthotropic m = mat_;
+  const double r = opt_.failure.residual;
+  if (damage[fibre_damage] > 0.0) {
+    m.E1 *= r;
+    m.G12 *= r;
+    m.nu12 *= r;
+  }
+  if (damage[matrix_damage] > 0.0) {
+    m.E2 *= r;
+    m.G12 *= r;
+    m.nu12 *= r;
+  }
+  if (damage[interface_damage] > 0.0) m.G12 *= r;
+  return m.Qbar(theta_);
+}
+
+void ExplicitEFG::set_damage(std::size_t g, const std::array<double, 3>& damage) {
+  gp_.at(g).damage = damage;
+  gp_[g].Qd = degraded_stiffness(damage);
 }
 
 void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
@@ -167,7 +191,8 @@ void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
   ncontact_ = nstick_ = 0;
   if (!has_tool_) return;
   const std::size_t nv = tool_.vertices.size();
-  const Vec2 shift = tool_.velocity * (t_ + dt);  // tool at t^{n+1}
+  const Vec2 shift = tool_.displacement(t_ + dt);  // tool at t^{n+1}
+  const Vec2 vtool = (shift - tool_.displacement(t_)) / dt;
   std::vector<Vec2> v(nv);
   Vec2 lo = Vec2::Constant(1e300), hi = Vec2::Constant(-1e300);
   for (std::size_t k = 0; k < nv; ++k) {
@@ -176,6 +201,7 @@ void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
     hi = hi.cwiseMax(v[k]);
   }
   for (std::size_t I = 0; I < x_.size(); ++I) {
+    if (!active_[I]) continue;
     const Vec2 xp = x_[I] + dt * vhalf[I];  // predicted x^{n+1} (Eq 49)
     if ((xp.array() < lo.array()).any() || (xp.array() > hi.array()).any()) continue;
     double gmin = 1e300;
@@ -196,7 +222,7 @@ void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
     const Vec2 n(t.y(), -t.x());  // outward normal of the face
     const double M = mass_[I];
     const double fn = 2.0 * M * gmin / (dt * dt);                       // Eq 39
-    const double gt = (dt * vhalf[I] - dt * tool_.velocity).dot(t);  // tangential slip in the step
+    const double gt = (dt * vhalf[I] - dt * vtool).dot(t);  // tangential slip in the step
     // Eq 40 with the factor 2 of Eq 39: both trial forces act through the half step of Eq 48,
     // so this stick force removes the step's tangential slip exactly, and the stick/slip
     // comparison compares like with like (README: contact).
@@ -220,6 +246,49 @@ void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
   }
 }
 
+void ExplicitEFG::update_release() {
+  erosion_changed_ = false;
+  std::vector<char> carried(x_.size(), 0);
+  neroded_ = 0;
+  for (const auto& q : gp_) {
+    if (q.eroded) {
+      ++neroded_;
+      continue;
+    }
+    for (int I : q.sd.nodes) carried[I] = 1;
+  }
+  nreleased_ = 0;
+  for (std::size_t I = 0; I < x_.size(); ++I) {
+    if (!carried[I]) active_[I] = 0;  // irreversible
+    if (!active_[I]) {
+      ++nreleased_;
+      v_[I].setZero();
+      a_[I].setZero();
+    }
+  }
+}
+
+void ExplicitEFG::add_opaque_segment(const Segment& s) {
+  opaque_.push_back(s);
+  const double dmax = *std::max_element(support_.begin(), support_.end());
+  std::vector<Vec2> pts;
+  std::vector<std::size_t> ids;
+  const Vec2 ab = s.b - s.a;
+  const double L2 = ab.squaredNorm();
+  for (std::size_t g = 0; g < gp_.size(); ++g) {
+    const Vec2& x = gp_[g].xr;
+    const double u = L2 > 0.0 ? std::clamp((x - s.a).dot(ab) / L2, 0.0, 1.0) : 0.0;
+    if ((x - (s.a + u * ab)).norm() < dmax) {
+      pts.push_back(x);
+      ids.push_back(g);
+    }
+  }
+  if (pts.empty()) return;
+  auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
+  for (std::size_t k = 0; k < ids.size(); ++k) gp_[ids[k]].sd = std::move(sf[k]);
+  update_release();
+}
+
 void ExplicitEFG::update_reference() {
   for (auto& q : gp_) {
     Vec2 xg = Vec2::Zero();
@@ -232,7 +301,7 @@ void ExplicitEFG::update_reference() {
   xr_ = x_;
   std::vector<Vec2> pts(gp_.size());
   for (std::size_t g = 0; g < gp_.size(); ++g) pts[g] = gp_[g].xr;
-  auto sf = shape_functions(pts, xr_, support_, opt_.weight, true);
+  auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
   for (std::size_t g = 0; g < gp_.size(); ++g) gp_[g].sd = std::move(sf[g]);
 }
 
@@ -242,7 +311,15 @@ void ExplicitEFG::apply_bcs(double t) {
 
 double ExplicitEFG::critical_time_step() const {
   CellList cl;
-  cl.build(x_, spacing_);
+  const std::vector<Vec2>* pts = &x_;
+  if (nreleased_ > 0) {
+    xactive_.clear();
+    for (std::size_t I = 0; I < x_.size(); ++I) {
+      if (active_[I]) xactive_.push_back(x_[I]);
+    }
+    pts = &xactive_;
+  }
+  cl.build(*pts, spacing_);
   double dmin = cl.min_pair_distance();
   if (!std::isfinite(dmin)) dmin = spacing_;
   return dmin / mat_.wave_speed();
@@ -267,6 +344,11 @@ void ExplicitEFG::step(double dt) {
     update_reference();
   }
   for (std::size_t I = 0; I < n; ++I) {
+    if (!active_[I]) {
+      v_[I].setZero();
+      a_[I].setZero();
+      continue;
+    }
     a_[I] = (fext_[I] - fint_[I]) / mass_[I];  // Eq 46
     v_[I] += 0.5 * dt * a_[I];                  // Eq 50
   }

@@ -106,6 +106,34 @@ double CellList::min_pair_distance() const {
   return std::sqrt(best2);
 }
 
+bool line_of_sight_blocked(const Vec2& x, const Vec2& xI, const Segment& s) {
+  auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const Vec2 r = xI - x, q = s.b - s.a;
+  const double den = cross(r, q);
+  if (den == 0.0) return false;  // parallel or collinear: not hidden
+  const Vec2 w = s.a - x;
+  const double t = cross(w, q) / den;  // along the line of sight
+  const double u = cross(w, r) / den;  // along the segment
+  return t > 0.0 && t < 1.0 && u >= 0.0 && u <= 1.0;
+}
+
+void visibility_filter(const Vec2& x, const std::vector<Vec2>& nodes, const std::vector<Segment>& opaque,
+                       std::vector<int>& candidates) {
+  if (opaque.empty()) return;
+  std::size_t k = 0;
+  for (int I : candidates) {
+    bool hidden = false;
+    for (const Segment& s : opaque) {
+      if (line_of_sight_blocked(x, nodes[I], s)) {
+        hidden = true;
+        break;
+      }
+    }
+    if (!hidden) candidates[k++] = I;
+  }
+  candidates.resize(k);
+}
+
 bool mls_shape(const Vec2& x, const std::vector<Vec2>& nodes, const std::vector<double>& support,
                const std::vector<int>& candidates, const WeightParams& weight, ShapeData& out,
                bool derivatives) {

@@ -151,38 +151,78 @@ void register_solvers(SolverRegistry& registry) {
 
   SolverSpec cut;
   cut.name = "efg_cutting";
-  cut.description = "PROTOTYPE explicit EFG orthogonal cutting of UD-GFRP: F_c, F_t per unit width (not validated)";
-  cut.source = "Kahwash et al. 2018 sections 2-3, Tables 2-3";
+  cut.description = "Explicit EFG orthogonal cutting of UD-GFRP (Kahwash 2018): F_c, F_t per unit width to chip completion";
+  cut.source = "Kahwash et al. 2018 sections 2-3 and 5, Tables 2-3";
   cut.params = material_params();
-  for (auto q : {p("theta", Dim::angle, "fibre angle, clockwise from the cutting direction", pi / 6, 0, pi),
+  for (auto q : {p("theta", Dim::angle, "fibre angle: fibres along (cos, sin) with the tool moving +x", pi / 6, 0, pi),
                  p("criterion", Dim::dimensionless, "0 max stress, 1 Hashin, 2 LaRC02", 2, 0, 2),
-                 p("X_T", Dim::stress, "fibre tensile strength", 697.8e6, 0, inf),
-                 p("X_C", Dim::stress, "fibre compressive strength", 443.76e6, 0, inf),
-                 p("Y_T", Dim::stress, "transverse tensile strength", 89.7216e6, 0, inf),
-                 p("Y_C", Dim::stress, "transverse compressive strength", 148.33e6, 0, inf),
-                 p("S_L", Dim::stress, "in-plane shear strength", 33.1e6, 0, inf),
-                 p("depth", Dim::length, "depth of cut", 0.25e-3, 0, inf),
-                 p("work_length", Dim::length, "workpiece length", 1.5e-3, 0, inf),
-                 p("work_height", Dim::length, "workpiece height", 0.75e-3, 0, inf),
-                 p("spacing", Dim::length, "nodal spacing", 0.05e-3, 0, inf),
+                 p("X_T", Dim::stress, "fibre tensile strength (Table 2)", 697.8e6, 0, inf),
+                 p("X_C", Dim::stress, "fibre compressive strength (Table 2)", 443.76e6, 0, inf),
+                 p("Y_T", Dim::stress, "transverse tensile strength (Table 2)", 89.7216e6, 0, inf),
+                 p("Y_C", Dim::stress, "transverse compressive strength (Table 2)", 148.33e6, 0, inf),
+                 p("S_L", Dim::stress, "in-plane shear strength (Table 2)", 33.1e6, 0, inf),
+                 p("depth", Dim::length, "depth of cut (Table 3: 0.25 mm)", 0.25e-3, 0, inf),
+                 p("rake", Dim::angle, "rake angle (Table 3: 0)", 0.0, -pi / 4, pi / 3),
+                 p("work_length", Dim::length, "workpiece length (assumption)", 1.5e-3, 0, inf),
+                 p("work_height", Dim::length, "workpiece height (assumption)", 0.75e-3, 0, inf),
+                 p("notch", Dim::length, "already-cut length: the cut starts inside the workpiece", 0.25e-3, 0, inf),
+                 p("spacing", Dim::length, "nodal spacing along x", 0.05e-3, 0, inf),
+                 p("support_factor", Dim::dimensionless, "domain of influence / nodal spacing", 2.0, 1.2, 4),
                  p("speed", Dim::velocity, "cutting speed (Table 3: 3800 mm/min)", 3800e-3 / 60.0, 0, inf),
                  p("time_scale", Dim::dimensionless, "tool speed multiplier (time scaling)", 50, 1, 1e4),
-                 p("travel", Dim::length, "tool travel after first contact", 0.05e-3, 0, inf),
-                 p("mu", Dim::dimensionless, "rake-face friction coefficient", 0.3, 0, 2),
+                 p("travel", Dim::length, "maximum tool travel after first contact", 0.3e-3, 0, inf),
+                 p("ramp_transits", Dim::dimensionless, "tool speed ramp, in wave transits of the workpiece height", 50, 0, 1e4),
+                 p("mu", Dim::dimensionless, "rake-face friction coefficient (assumption)", 0.3, 0, 2),
                  p("clearance", Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
-                 p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1)}) {
+                 p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1),
+                 p("erosion", Dim::dimensionless, "separation: 0 none, 1 fibre and matrix failed, 2 either", 1, 0, 2),
+                 p("visibility", Dim::dimensionless, "visibility criterion across the notch and the cut line (0/1)", 1, 0, 1),
+                 p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99),
+                 p("drop_window", Dim::dimensionless, "steps of the running mean of dt", 200, 1, 1e6),
+                 p("min_travel", Dim::length, "no chip-completion detection before this travel", 0.0, 0, inf),
+                 p("completion_guard", Dim::dimensionless, "1: a drop counts only once damage connects edge and free surface", 1, 0, 1),
+                 p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0),
+                 p("snapshots", Dim::dimensionless, "damage snapshots kept (k/n of the run)", 3, 0, 20)}) {
     cut.params.push_back(q);
   }
-  cut.scalars = {{"F_c", Dim::force_per_width, "mean cutting force over the second half of the travel"},
-                 {"F_t", Dim::force_per_width, "mean thrust force over the second half of the travel"},
+  cut.scalars = {{"F_c", Dim::force_per_width, "mean cutting force from first contact to the end (chip completion)"},
+                 {"F_t", Dim::force_per_width, "mean thrust force from first contact to the end"},
+                 {"F_c_peak", Dim::force_per_width, "largest window-mean cutting force"},
                  {"t_contact", Dim::time, "first tool contact"},
-                 {"t_dt_drop", Dim::time, "first time the Eq 56 step fell below half its initial value (-1: none)"},
+                 {"t_complete", Dim::time, "chip completion from the Eq 56 step drop (-1: none)"},
+                 {"travel_complete", Dim::length, "tool travel at chip completion (-1: none)"},
+                 {"chip_complete", Dim::dimensionless, "1 when the time-step drop was detected"},
+                 {"travel_path", Dim::length, "travel at which damage first connects the edge to the free surface (-1: never)"},
+                 {"travel_first_drop", Dim::length, "travel of the first time-step drop, guard or not (-1: none)"},
+                 {"dt_drop_ratio", Dim::dimensionless, "dt / running mean at detection (1: none)"},
                  {"dt_min_ratio", Dim::dimensionless, "smallest / initial time step"},
                  {"fibre_damaged_fraction", Dim::dimensionless, "Gauss points with fibre damage"},
                  {"matrix_damaged_fraction", Dim::dimensionless, "Gauss points with matrix damage"},
+                 {"chip_fibre_fraction", Dim::dimensionless, "fibre-damaged fraction of the chip region"},
+                 {"chip_matrix_fraction", Dim::dimensionless, "matrix-damaged fraction of the chip region"},
+                 {"sub_fibre_fraction", Dim::dimensionless, "fibre-damaged fraction within one depth below the cut"},
+                 {"sub_matrix_fraction", Dim::dimensionless, "matrix-damaged fraction within one depth below the cut"},
+                 {"eroded", Dim::dimensionless, "separated Gauss points"},
+                 {"released", Dim::dimensionless, "released nodes"},
                  {"nodes", Dim::dimensionless, "nodes"},
+                 {"gauss_points", Dim::dimensionless, "Gauss points"},
                  {"steps", Dim::dimensionless, "time steps"},
-                 {"node_steps_per_s", Dim::dimensionless, "throughput: nodes x steps / wall time (1/s)"}};
+                 {"node_steps_per_s", Dim::dimensionless, "throughput: nodes x steps / wall time (1/s)"},
+                 {"E1_used", Dim::stress, "E1 used"},
+                 {"E2_used", Dim::stress, "E2 used"},
+                 {"nu12_used", Dim::dimensionless, "nu12 used"},
+                 {"nu21_used", Dim::dimensionless, "nu21 used (reciprocity nu12 E2/E1)"},
+                 {"G12_used", Dim::stress, "G12 used"},
+                 {"rho_used", Dim::density, "density used"},
+                 {"X_T_used", Dim::stress, "X_T used"},
+                 {"X_C_used", Dim::stress, "X_C used"},
+                 {"Y_T_used", Dim::stress, "Y_T used"},
+                 {"Y_C_used", Dim::stress, "Y_C used"},
+                 {"S_L_used", Dim::stress, "S_L used"},
+                 {"depth_used", Dim::length, "depth of cut used"},
+                 {"rake_used", Dim::angle, "rake angle used"},
+                 {"speed_used", Dim::velocity, "paper cutting speed (before time scaling)"},
+                 {"wave_speed", Dim::velocity, "Eq 55 c_max = sqrt(C11/rho)"}};
   cut.run = [](const Values& v, const ProgressFn& progress) {
     CuttingSetup s;
     s.material = gfrp_of(v);
@@ -197,15 +237,27 @@ void register_solvers(SolverRegistry& registry) {
     s.criterion = static_cast<analytic::Criterion>(static_cast<int>(std::lround(v.at("criterion"))));
     s.theta = v.at("theta");
     s.depth = v.at("depth");
+    s.rake = v.at("rake");
     s.work_length = v.at("work_length");
     s.work_height = v.at("work_height");
+    s.notch = v.at("notch");
     s.spacing = v.at("spacing");
+    s.support_factor = v.at("support_factor");
     s.speed = v.at("speed");
     s.time_scale = v.at("time_scale");
     s.travel = v.at("travel");
+    s.ramp_transits = v.at("ramp_transits");
     s.mu = v.at("mu");
     s.clearance = v.at("clearance");
     s.residual = v.at("residual");
+    s.erosion = static_cast<Erosion>(static_cast<int>(std::lround(v.at("erosion"))));
+    s.visibility = v.at("visibility") > 0.5;
+    s.drop = v.at("drop");
+    s.drop_window = static_cast<int>(std::lround(v.at("drop_window")));
+    s.min_travel = v.at("min_travel");
+    s.completion_guard = v.at("completion_guard") > 0.5;
+    s.cfl = v.at("cfl");
+    s.snapshots = static_cast<int>(std::lround(v.at("snapshots")));
     const auto t0 = std::chrono::steady_clock::now();
     const CuttingResult r = run_cutting(s, [&](double f) {
       if (progress) progress(f, "simulated " + std::to_string(f * 100.0) + " %");
@@ -215,33 +267,66 @@ void register_solvers(SolverRegistry& registry) {
     Table t;
     t.name = "forces";
     t.add("t", "s", r.t);
+    t.add("travel", "m", r.travel);
     t.add("F_c", "N/m", r.Fc);
     t.add("F_t", "N/m", r.Ft);
     t.add("dt", "s", r.dt);
     out.tables.push_back(t);
-    Snapshot snap;
-    snap.time = r.t.empty() ? 0.0 : r.t.back();
-    snap.x = r.gx;
-    snap.y = r.gy;
-    snap.add("fibre_damage", "1", r.dfibre);
-    snap.add("matrix_damage", "1", r.dmatrix);
-    out.snapshots.push_back(snap);
+    for (const auto& sn : r.snapshots) {
+      Snapshot snap;
+      snap.time = sn.t;
+      snap.x = sn.x;
+      snap.y = sn.y;
+      snap.add("fibre_damage", "1", sn.fibre);
+      snap.add("matrix_damage", "1", sn.matrix);
+      out.snapshots.push_back(snap);
+    }
     const double ng = static_cast<double>(r.gauss);
+    auto frac = [](std::size_t a, std::size_t b) { return b > 0 ? static_cast<double>(a) / b : 0.0; };
+    const Orthotropic& m = s.material;
     out.scalars = {{"F_c", r.Fc_mean},
                    {"F_t", r.Ft_mean},
+                   {"F_c_peak", r.Fc_peak},
                    {"t_contact", r.t_contact},
-                   {"t_dt_drop", r.t_dt_drop},
+                   {"t_complete", r.t_complete},
+                   {"travel_complete", r.travel_complete},
+                   {"chip_complete", r.t_complete >= 0.0 ? 1.0 : 0.0},
+                   {"travel_path", r.travel_path},
+                   {"travel_first_drop", r.travel_first_drop},
+                   {"dt_drop_ratio", r.dt_drop_ratio},
                    {"dt_min_ratio", r.dt_min / r.dt_initial},
                    {"fibre_damaged_fraction", static_cast<double>(r.fibre_damaged) / ng},
                    {"matrix_damaged_fraction", static_cast<double>(r.matrix_damaged) / ng},
+                   {"chip_fibre_fraction", frac(r.chip_fibre, r.chip_gauss)},
+                   {"chip_matrix_fraction", frac(r.chip_matrix, r.chip_gauss)},
+                   {"sub_fibre_fraction", frac(r.sub_fibre, r.sub_gauss)},
+                   {"sub_matrix_fraction", frac(r.sub_matrix, r.sub_gauss)},
+                   {"eroded", static_cast<double>(r.eroded)},
+                   {"released", static_cast<double>(r.released)},
                    {"nodes", static_cast<double>(r.nodes)},
+                   {"gauss_points", ng},
                    {"steps", static_cast<double>(r.steps)},
-                   {"node_steps_per_s", static_cast<double>(r.nodes) * static_cast<double>(r.steps) / wall}};
-    out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"t_contact", "s"}, {"t_dt_drop", "s"}};
-    out.notes.push_back("efg_cutting is a PROTOTYPE: not validated against Kahwash Tables 4-6; workpiece size, "
-                        "clearance angle (7 deg), sharp edge, friction 0.3, fixed bottom and far end, and the "
-                        "time scaling are assumptions; no visibility criterion; damaged points keep 1 % stiffness "
-                        "(no separation).");
+                   {"node_steps_per_s", static_cast<double>(r.nodes) * static_cast<double>(r.steps) / wall},
+                   {"E1_used", m.E1},
+                   {"E2_used", m.E2},
+                   {"nu12_used", m.nu12},
+                   {"nu21_used", m.nu12 * m.E2 / m.E1},
+                   {"G12_used", m.G12},
+                   {"rho_used", m.rho},
+                   {"X_T_used", s.lamina.X_T},
+                   {"X_C_used", s.lamina.X_C},
+                   {"Y_T_used", s.lamina.Y_T},
+                   {"Y_C_used", s.lamina.Y_C},
+                   {"S_L_used", s.lamina.S_L},
+                   {"depth_used", s.depth},
+                   {"rake_used", s.rake},
+                   {"speed_used", s.speed},
+                   {"wave_speed", m.wave_speed()}};
+    out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
+    out.notes.push_back("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
+                        "edge, constant friction, fixed bottom and far end and the time scaling are assumptions; "
+                        "failed (fibre+matrix) Gauss points carry no stress, fully unsupported nodes are released; "
+                        "visibility across the notch and the cut line behind the edge (solvers/efg/README.md).");
     return out;
   };
   registry.add(cut);

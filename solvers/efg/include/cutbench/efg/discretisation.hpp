@@ -33,10 +33,18 @@ Discretisation rectangle(double Lx, double Ly, int nx, int ny, double support_fa
 // (weights are lengths), for traction integrals.
 std::vector<GaussPoint> line_gauss(const Vec2& a, const Vec2& b, int nseg, int ng = 2);
 
+// Rectangle with a rectangular notch removed from its top-left corner: the lattice of
+// `rectangle` without the nodes strictly inside {x < notch_x, y > notch_y} and without the cells
+// that have a vertex there (the already-cut part of a cutting workpiece, Kahwash 2018 section 5.1:
+// the cut starts inside the workpiece). Node spacings hx = Lx/(nx-1), hy = Ly/(ny-1).
+Discretisation notched_rectangle(double Lx, double Ly, int nx, int ny, double support_factor, double notch_x,
+                                 double notch_y, int ng = 2);
+
 // Shape functions at each point; throws NumericalError naming the point when the MLS fit fails.
+// With opaque segments the visibility criterion removes hidden nodes from each support.
 std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const std::vector<Vec2>& nodes,
                                        const std::vector<double>& support, const WeightParams& weight,
-                                       bool derivatives = true);
+                                       bool derivatives = true, const std::vector<Segment>& opaque = {});
 
 // Gauss-Legendre points and weights on [-1, 1] for n = 1..4.
 void gauss_legendre(int n, std::vector<double>& xi, std::vector<double>& w);

@@ -49,6 +49,12 @@ struct FailureOptions {
   double S_sigma = 0.0;    // interface normal strength (Table 1), 0: unused
   double S_tau = 0.0;      // interface shear strength (Table 1), 0: unused
 };
+// Separation of failed material (solvers/efg/README.md, "Separation"): with `erosion` on, a Gauss
+// point whose fibre and matrix modes have both failed (every modulus degraded) carries no stress
+// from then on ("eroded"); a node none of whose supporting Gauss points carries stress any more
+// is released: it leaves the model (no internal force, no contact, excluded from the Eq 56 time
+// step, velocity frozen), as the debris of an element-free crack.
+enum class Erosion { none, fibre_and_matrix, fibre_or_matrix };
 enum DamageMode : int { fibre_damage = 0, matrix_damage = 1, interface_damage = 2 };
 
 // Rigid tool: a convex polygon (counter-clockwise vertices at t = 0) translating at `velocity`,
@@ -58,10 +64,20 @@ enum DamageMode : int { fibre_damage = 0, matrix_damage = 1, interface_damage = 
 // f_t = 2 M g_t / dt^2 (Eq 40 with the same factor, removes the step's slip), slip trial mu f_n
 // (Eq 41), stick when the stick trial is the smaller (Eqs 42-43); no penalty parameter. The
 // reported tool force is the momentum exchanged per step over dt (half the Eq 39 value).
+// The velocity may be ramped linearly from zero over `ramp_time` (a quasi-static start: a tool
+// hitting the workpiece at full speed launches a stress wave of rho c |v|).
 struct RigidTool {
   std::vector<Vec2> vertices;
   Vec2 velocity = Vec2::Zero();
   double mu = 0.0;
+  double ramp_time = 0.0;
+  Vec2 velocity_at(double t) const {
+    return ramp_time > 0.0 && t < ramp_time ? Vec2(velocity * (t / ramp_time)) : velocity;
+  }
+  Vec2 displacement(double t) const {
+    if (ramp_time > 0.0 && t < ramp_time) return velocity * (0.5 * t * t / ramp_time);
+    return velocity * (t - 0.5 * ramp_time);
+  }
 };
 
 struct ExplicitOptions {
@@ -71,6 +87,7 @@ struct ExplicitOptions {
   WeightParams weight;
   double thickness = 1.0;   // out-of-plane thickness (m); forces are per this thickness
   FailureOptions failure;
+  Erosion erosion = Erosion::none;
 };
 
 // A prescribed nodal velocity component v(t) (displacement follows by integration).
@@ -98,7 +115,19 @@ public:
   int contact_count() const { return ncontact_; }
   int stick_count() const { return nstick_; }
 
-  double critical_time_step() const;  // Eqs 55-56 on the current configuration
+  // Visibility criterion: opaque segments (crack faces, cut line, re-entrant boundaries) given in
+  // the reference configuration. Adding one recomputes the shape functions of the Gauss points
+  // within the largest support radius of it, without the nodes it hides (lumped masses are kept).
+  void add_opaque_segment(const Segment& s);
+  const std::vector<Segment>& opaque_segments() const { return opaque_; }
+  // Shape data (reference configuration) of Gauss point g.
+  const ShapeData& shape(std::size_t g) const { return gp_[g].sd; }
+  bool eroded(std::size_t g) const { return gp_[g].eroded; }
+  bool released(std::size_t I) const { return !active_[I]; }
+  std::size_t released_count() const { return nreleased_; }
+  std::size_t eroded_count() const { return neroded_; }
+
+  double critical_time_step() const;  // Eqs 55-56 on the current configuration (active nodes)
   double step();                      // one step at cfl * critical; returns dt
   void step(double dt);
 
@@ -118,6 +147,11 @@ public:
   Mat2 deformation_gradient(std::size_t g) const { return gp_[g].F; }
   Vec2 gauss_position(std::size_t g) const;
   std::array<double, 3> damage(std::size_t g) const { return gp_[g].damage; }
+  // Imposes damage flags on Gauss point g (pre-failed material, tests); the stiffness is degraded
+  // as for failure in the run, and erosion applies at the next force evaluation.
+  void set_damage(std::size_t g, const std::array<double, 3>& damage);
+  // Recomputes stresses and internal forces at the current positions (no time advance).
+  void refresh() { compute_internal_forces(); }
   double kinetic_energy() const;
   double strain_energy() const;
   const Orthotropic& material() const { return mat_; }
@@ -132,8 +166,11 @@ private:
     ShapeData sd;                    // shape functions on the reference configuration
     std::array<double, 3> damage = {0.0, 0.0, 0.0};  // fibre, matrix, interface
     Eigen::Matrix3d Qd = Eigen::Matrix3d::Zero();    // degraded x-y stiffness (when damaged)
+    bool eroded = false;                             // separated: carries no stress
   };
+  void update_release();
   bool update_damage(GP& q) const;  // true when a new mode failed
+  Eigen::Matrix3d degraded_stiffness(const std::array<double, 3>& damage) const;
   void apply_contact(double dt, std::vector<Vec2>& vhalf);
   void compute_internal_forces();
   void update_reference();
@@ -153,6 +190,11 @@ private:
   std::vector<double> mass_;
   std::vector<GP> gp_;
   std::vector<VelocityBC> bcs_;
+  std::vector<Segment> opaque_;
+  std::vector<char> active_;
+  std::size_t nreleased_ = 0, neroded_ = 0;
+  bool erosion_changed_ = false;
+  mutable std::vector<Vec2> xactive_;  // scratch for the time step (capacity kept)
   double t_ = 0.0;
   long nstep_ = 0;
 };

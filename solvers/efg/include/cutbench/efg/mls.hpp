@@ -59,6 +59,19 @@ private:
   std::vector<int> start_, items_;  // CSR layout of points per cell
 };
 
+// Visibility criterion (Belytschko et al. 1996; Kahwash 2018 section 3.5): an opaque segment (a
+// crack, a cut or a non-convex boundary) hides a node from an evaluation point when the line of
+// sight between them crosses it; the hidden node is dropped from the point's support, so its shape
+// function and derivatives vanish there. Touching an end point or running along the segment
+// counts as crossing only when the interiors properly intersect (collinear overlap: not hidden).
+struct Segment {
+  Vec2 a = Vec2::Zero(), b = Vec2::Zero();
+};
+bool line_of_sight_blocked(const Vec2& x, const Vec2& xI, const Segment& s);
+// Removes from `candidates` every node hidden from x by one of the opaque segments.
+void visibility_filter(const Vec2& x, const std::vector<Vec2>& nodes, const std::vector<Segment>& opaque,
+                       std::vector<int>& candidates);
+
 // MLS shape functions at x from the candidate nodes (those with |x - x_I| < D_I are used).
 // Returns false when fewer than three supporting nodes exist or A is singular.
 bool mls_shape(const Vec2& x, const std::vector<Vec2>& nodes, const std::vector<double>& support,

@@ -1,0 +1,195 @@
+// Separation ingredients of the cutting model: the visibility criterion (a node hidden behind an
+// opaque segment drops out of the support, the remaining MLS functions still reproduce linear
+// fields), the notched workpiece, erosion of failed Gauss points and release of unsupported
+// nodes, and force transmission across a cut.
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "cutbench/efg/explicit.hpp"
+
+using namespace cutbench::efg;
+
+namespace {
+Orthotropic gfrp() {
+  Orthotropic m;
+  m.E1 = 34.28e9;
+  m.E2 = 11.57e9;
+  m.nu12 = 0.24244;
+  m.G12 = 2.05e9;
+  m.rho = 1580.0;
+  return m;
+}
+double phi_of(const ShapeData& sd, int node) {
+  for (std::size_t a = 0; a < sd.nodes.size(); ++a) {
+    if (sd.nodes[a] == node) return sd.phi[a];
+  }
+  return 0.0;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(efg_separation)
+
+BOOST_AUTO_TEST_CASE(line_of_sight) {
+  const Segment s{Vec2(0.0, 0.0), Vec2(1.0, 0.0)};
+  BOOST_TEST(line_of_sight_blocked(Vec2(0.5, -1.0), Vec2(0.5, 1.0), s));
+  BOOST_TEST(line_of_sight_blocked(Vec2(0.1, -1.0), Vec2(0.9, 1.0), s));
+  BOOST_TEST(!line_of_sight_blocked(Vec2(1.5, -1.0), Vec2(1.5, 1.0), s));   // beyond the tip
+  BOOST_TEST(!line_of_sight_blocked(Vec2(0.5, 0.5), Vec2(0.6, 1.0), s));    // same side
+  BOOST_TEST(!line_of_sight_blocked(Vec2(0.2, 0.0), Vec2(0.8, 0.0), s));    // collinear
+  BOOST_TEST(!line_of_sight_blocked(Vec2(0.5, -1.0), Vec2(0.5, -0.1), s));  // stops short
+}
+
+BOOST_AUTO_TEST_CASE(visibility_hides_nodes_across_a_cut) {
+  // 11 x 11 nodes on the unit square, cut from the left edge to x = 0.55 between rows y = 0.5
+  // and 0.6; a point just below the cut.
+  const Discretisation d = rectangle(1.0, 1.0, 11, 11, 2.5);
+  const std::vector<Segment> cut = {{Vec2(-0.1, 0.55), Vec2(0.55, 0.55)}};
+  const std::vector<Vec2> pts = {Vec2(0.3, 0.52), Vec2(0.32, 0.58), Vec2(0.8, 0.52)};
+  const WeightParams w;
+  const auto open = shape_functions(pts, d.nodes, d.support, w, true);
+  const auto hidden = shape_functions(pts, d.nodes, d.support, w, true, cut);
+  const int above = 6 * 11 + 3;  // node (0.3, 0.6), just across the cut from the first point
+  const int below = 5 * 11 + 3;  // node (0.3, 0.5)
+  BOOST_TEST(std::abs(phi_of(open[0], above)) > 1e-3);  // influences the point without the cut
+  BOOST_TEST(phi_of(hidden[0], above) == 0.0);          // hidden by the cut: phi vanishes
+  BOOST_TEST(std::abs(phi_of(hidden[1], below)) == 0.0);  // and from the other side
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const ShapeData& sd = hidden[k];
+    for (int I : sd.nodes) BOOST_TEST(!line_of_sight_blocked(pts[k], d.nodes[I], cut[0]));
+    // Partition of unity and linear reproduction survive the truncated support.
+    double s0 = 0.0, sx = 0.0, sy = 0.0, dx0 = 0.0, dxx = 0.0, dyy = 0.0;
+    for (std::size_t a = 0; a < sd.nodes.size(); ++a) {
+      const Vec2& X = d.nodes[sd.nodes[a]];
+      s0 += sd.phi[a];
+      sx += sd.phi[a] * X.x();
+      sy += sd.phi[a] * X.y();
+      dx0 += sd.dphidx[a];
+      dxx += sd.dphidx[a] * X.x();
+      dyy += sd.dphidy[a] * X.y();
+    }
+    BOOST_TEST(std::abs(s0 - 1.0) < 1e-12);
+    BOOST_TEST(std::abs(sx - pts[k].x()) < 1e-12);
+    BOOST_TEST(std::abs(sy - pts[k].y()) < 1e-12);
+    BOOST_TEST(std::abs(dx0) < 1e-9);
+    BOOST_TEST(std::abs(dxx - 1.0) < 1e-9);
+    BOOST_TEST(std::abs(dyy - 1.0) < 1e-9);
+  }
+  // Beyond the tip of the cut nothing changes.
+  BOOST_TEST(open[2].nodes.size() == hidden[2].nodes.size());
+  BOOST_TEST(hidden[0].nodes.size() < open[0].nodes.size());
+}
+
+BOOST_AUTO_TEST_CASE(notched_workpiece) {
+  // 11 x 6 lattice on 1 x 0.5, notch x < 0.3, y > 0.25: removes columns 0-2 of rows 3-5.
+  const Discretisation d = notched_rectangle(1.0, 0.5, 11, 6, 2.0, 0.3, 0.25);
+  BOOST_TEST(d.nodes.size() == 66u - 9u);
+  BOOST_TEST(d.cells.size() == 50u - 9u);  // cells with a removed vertex: 3 columns x 3 rows
+  BOOST_TEST(d.gauss.size() == 4u * d.cells.size());
+  for (const auto& X : d.nodes) BOOST_TEST(!(X.x() < 0.3 - 1e-9 && X.y() > 0.25 + 1e-9));
+}
+
+BOOST_AUTO_TEST_CASE(prefailed_band_releases_its_nodes) {
+  // 1 x 1 mm, 11 x 11 nodes, supports 2h; a band |y - 0.5 mm| < 0.25 mm of fibre+matrix failed
+  // Gauss points is eroded; nodes whose whole support lies in it are released.
+  const double L = 1e-3, h = 0.1e-3;
+  const Discretisation d = rectangle(L, L, 11, 11, 2.0);
+  ExplicitOptions opt;
+  opt.erosion = Erosion::fibre_and_matrix;
+  ExplicitEFG s(d, gfrp(), 0.3, opt);
+  const double dt0 = s.critical_time_step();
+  std::size_t banded = 0;
+  for (std::size_t g = 0; g < s.num_gauss(); ++g) {
+    if (std::abs(d.gauss[g].x.y() - 0.5 * L) < 0.25 * L) {
+      s.set_damage(g, {1.0, 1.0, 0.0});
+      ++banded;
+    }
+  }
+  // Homogeneous stretch: eroded points carry no stress, the others do.
+  std::vector<Vec2> u(d.nodes.size());
+  for (std::size_t I = 0; I < u.size(); ++I) u[I] = Vec2(1e-3 * d.nodes[I].x(), 0.0);
+  s.set_displacement(u);
+  BOOST_TEST(s.eroded_count() == banded);
+  for (std::size_t g = 0; g < s.num_gauss(); ++g) {
+    if (s.eroded(g)) {
+      BOOST_TEST(s.pk2(g).norm() == 0.0);
+    } else {
+      BOOST_TEST(s.pk2(g).norm() > 1e6);
+    }
+  }
+  // Released: exactly the nodes no supporting Gauss point of which survives (|y - 0.5| <= 0.1 mm
+  // with supports 0.2 mm and Gauss points of the band up to 0.25 mm - a/2 away).
+  BOOST_TEST(s.released_count() > 0u);
+  for (std::size_t I = 0; I < d.nodes.size(); ++I) {
+    const double dy = std::abs(d.nodes[I].y() - 0.5 * L);
+    if (dy < 0.5 * h) BOOST_TEST(s.released(I));   // the band's middle row
+    if (dy > 0.25 * L) BOOST_TEST(!s.released(I));  // outside the band
+  }
+  // Released nodes leave the Eq 56 time step: bringing one next to a neighbour changes nothing.
+  int r = -1;
+  for (std::size_t I = 0; I < d.nodes.size(); ++I) {
+    if (s.released(I) && std::abs(d.nodes[I].x() - 0.5 * L) < 1e-9) r = static_cast<int>(I);
+  }
+  BOOST_REQUIRE(r >= 0);
+  std::vector<Vec2> u2(d.nodes.size(), Vec2::Zero());
+  u2[r] = Vec2(0.95 * h, 0.0);
+  s.set_displacement(u2);
+  BOOST_TEST(std::abs(s.critical_time_step() - dt0) < 1e-12 * dt0);
+  // Released nodes do not move.
+  for (int k = 0; k < 10; ++k) s.step();
+  BOOST_TEST(s.velocities()[r].norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(no_force_across_a_cut_failed_band) {
+  // One failed row of cells at mid-height plus the visibility cut along it: moving the upper part
+  // rigidly produces no force anywhere; without the cut the supports bridge the band.
+  const double L = 1e-3;
+  const Discretisation d = rectangle(L, L, 11, 11, 2.0);
+  auto run = [&](bool cut) {
+    ExplicitOptions opt;
+    opt.erosion = Erosion::fibre_and_matrix;
+    ExplicitEFG s(d, gfrp(), 0.3, opt);
+    if (cut) s.add_opaque_segment({Vec2(-0.1 * L, 0.55 * L), Vec2(1.1 * L, 0.55 * L)});
+    for (std::size_t g = 0; g < s.num_gauss(); ++g) {
+      if (std::abs(d.gauss[g].x.y() - 0.55 * L) < 0.05 * L) s.set_damage(g, {1.0, 1.0, 0.0});
+    }
+    std::vector<Vec2> u(d.nodes.size(), Vec2::Zero());
+    for (std::size_t I = 0; I < u.size(); ++I) {
+      if (d.nodes[I].y() > 0.55 * L) u[I] = Vec2(2e-6, 5e-6);  // upper part lifted and shifted
+    }
+    s.set_displacement(u);
+    double fmax = 0.0;
+    for (const auto& f : s.internal_forces()) fmax = std::max(fmax, f.norm());
+    return fmax;
+  };
+  const double bridged = run(false), separated = run(true);
+  BOOST_TEST(bridged > 1.0);                    // N per m thickness: supports span the band
+  BOOST_TEST(separated < 1e-9 * bridged);       // the cut separates the two parts
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(efg_tool_ramp)
+
+BOOST_AUTO_TEST_CASE(ramped_tool_motion_is_continuous) {
+  // Linear speed ramp over T: x(t) = V t^2/(2T) before T, V (t - T/2) after; continuous in
+  // position and velocity at T, and the velocity is the derivative of the displacement.
+  RigidTool tool;
+  tool.velocity = Vec2(2.0, 0.0);
+  tool.ramp_time = 1e-3;
+  const double T = tool.ramp_time, V = 2.0;
+  BOOST_TEST(tool.displacement(0.0).norm() == 0.0);
+  BOOST_TEST(std::abs(tool.displacement(0.5 * T).x() - V * 0.125 * T) < 1e-15);
+  BOOST_TEST(std::abs(tool.displacement(T).x() - 0.5 * V * T) < 1e-15);
+  BOOST_TEST(std::abs(tool.displacement(3 * T).x() - 2.5 * V * T) < 1e-15);
+  for (double t : {0.3 * T, 0.999 * T, 1.5 * T}) {
+    const double h = 1e-9;
+    const double fd = (tool.displacement(t + h).x() - tool.displacement(t - h).x()) / (2 * h);
+    BOOST_TEST(std::abs(fd - tool.velocity_at(t).x()) < 1e-6 * V);
+  }
+  tool.ramp_time = 0.0;
+  BOOST_TEST(std::abs(tool.displacement(T).x() - V * T) < 1e-15);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "cutbench/common/errors.hpp"
 #include "parallel.hpp"
@@ -85,12 +86,40 @@ void SolidSph::set_tool_thermal(HeatMaterial tool_heat, double depth) {
   heat_masks(tool_nl_, s, tool_fixed_, th_.brookshaw_band, tool_use_fmfs_, tool_loss_);
   tool_fmfs_.update(view);
   tool_thermal_ = true;
+  if (contact_.tool_heat_share >= 0.0) {
+    tool_share_ = contact_.tool_heat_share;
+  } else {
+    const double e_tool = std::sqrt(tool_heat_.conductivity * tool_heat_.density * tool_heat_.specific_heat);
+    const double e_work = std::sqrt(th_.heat.conductivity * th_.heat.density * th_.heat.specific_heat);
+    tool_share_ = e_tool / (e_tool + e_work);
+  }
+  pending_tool_heat_.assign(x_.size(), 0.0);
+}
+
+void SolidSph::deposit_friction_heat(std::size_t i, double heat) {
+  friction_heat_ += heat;
+  if (!thermal_ || t_fixed_[i]) return;
+  double to_tool = 0.0;
+  if (tool_thermal_ && tool_share_ > 0.0) {
+    to_tool = tool_share_ * heat;
+    pending_tool_heat_[i] += to_tool;
+  }
+  // in the audit metric rho0 c V_i T_i this adds exactly heat - to_tool
+  T_[i] += (heat - to_tool) * rho_[i] / (th_.heat.density * th_.heat.specific_heat * m_[i]);
+}
+
+double SolidSph::shear_cap(std::size_t i) const {
+  if (!contact_.shear_cap || !mat_.plastic) return std::numeric_limits<double>::infinity();
+  // shear flow stress at the particle's state (reference rate: the cap is a stress bound) times
+  // the face length dx it covers (per unit depth)
+  return mat_.jc.flow_stress(eps_p_[i], 0.0, T_[i]) / std::sqrt(3.0) * dx_;
 }
 
 double SolidSph::tool_heat_content() const {
   double e = 0.0;
   for (std::size_t i = 0; i < tool_x_.size(); ++i)
     e += tool_heat_.density * tool_heat_.specific_heat * tool_V_[i] * (tool_T_[i] - th_.boundary.T_ambient);
+  for (double q : pending_tool_heat_) e += q;  // friction heat not yet deposited on tool particles
   return e;
 }
 
@@ -148,6 +177,28 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
           loss[i] = 0;
           tool_loss[cross.index[k]] = 0;
         }
+    // friction heat share of the tool: onto the (non-sink) tool particles in the support of the
+    // heated workpiece particle, kernel-weighted; back to the workpiece particle if there are none
+    const double rc_tool = tool_heat_.density * tool_heat_.specific_heat;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double q = pending_tool_heat_[i];
+      if (q == 0.0) continue;
+      pending_tool_heat_[i] = 0.0;
+      double wsum = 0.0;
+      for (std::size_t k = cross.begin(i); k < cross.end(i); ++k)
+        if (!tool_fixed_[cross.index[k]]) wsum += kernel_.value((x_[i] - tool_world[cross.index[k]]).norm());
+      if (wsum > 0.0) {
+        for (std::size_t k = cross.begin(i); k < cross.end(i); ++k) {
+          const std::size_t j = cross.index[k];
+          if (tool_fixed_[j]) continue;
+          const double w = kernel_.value((x_[i] - tool_world[j]).norm()) / wsum;
+          tool_T_[j] += q * w / (rc_tool * tool_V_[j]);
+        }
+        friction_heat_tool_ += q;
+      } else {
+        T_[i] += q / (rc * vol[i]);
+      }
+    }
   }
   const ParticleView tool_view{tool_x_, tool_V_, tool_nl_, kernel_};
   for (int k = 0; k < sub; ++k) {
@@ -372,7 +423,6 @@ void SolidSph::set_tool(std::shared_ptr<const ToolGeometry> tool, const Vec2& po
 void SolidSph::apply_contact(double dt) {
   tool_pos_ += dt * tool_vel_;
   const double offset = contact_.offset_fraction * dx_;
-  const double c_heat = thermal_ ? th_.heat.specific_heat : 0.0;
   Vec2 force = Vec2::Zero();
   for (std::size_t i = 0; i < x_.size(); ++i) {
     if (fixed_[i]) continue;
@@ -386,7 +436,7 @@ void SolidSph::apply_contact(double dt) {
     if (jn <= 0.0) continue;
     const Vec2 vt = vrel - vn * sd.normal;
     Vec2 jt = -m_[i] * vt;
-    const double limit = contact_.friction * jn;
+    const double limit = std::min(contact_.friction * jn, shear_cap(i) * dt);
     if (jt.norm() > limit) jt *= limit / jt.norm();
     const Vec2 impulse = jn * sd.normal + jt;
     v_[i] += impulse / m_[i];
@@ -394,9 +444,7 @@ void SolidSph::apply_contact(double dt) {
     const Vec2 vrel_after = v_[i] - tool_vel_;
     const double slip = (vrel_after - vrel_after.dot(sd.normal) * sd.normal).norm();
     const double heat = contact_.heat_fraction * jt.norm() * slip;  // J/m over this step
-    friction_heat_ += heat;
-    // in the audit metric rho0 c V_i T_i this adds exactly `heat`
-    if (thermal_ && !t_fixed_[i]) T_[i] += heat * rho_[i] / (th_.heat.density * c_heat * m_[i]);
+    deposit_friction_heat(i, heat);
   }
   tool_force_ = force;
 }
@@ -405,7 +453,6 @@ void SolidSph::penalty_contact(double dt) {
   // positions are x^{n+1}; the tool is at its position of time_ + dt
   const Vec2 tool_pos = tool_pos_ + dt * tool_vel_;
   const double offset = contact_.offset_fraction * dx_;
-  const double c_heat = thermal_ ? th_.heat.specific_heat : 0.0;
   if (friction_history_.size() != x_.size()) friction_history_.assign(x_.size(), Vec2::Zero());
   Vec2 force = Vec2::Zero();
   for (std::size_t i = 0; i < x_.size(); ++i) {
@@ -420,7 +467,7 @@ void SolidSph::penalty_contact(double dt) {
     const Vec2 vrel = v_[i] - tool_vel_;
     const Vec2 vt = vrel - vrel.dot(sd.normal) * sd.normal;
     Vec2 ft = friction_history_[i] - (contact_.alpha * m_[i] / dt) * vt;
-    const double fy = contact_.friction * fn.norm();
+    const double fy = std::min(contact_.friction * fn.norm(), shear_cap(i));
     // Only the plastic (slip) part of the tangential motion dissipates: slip = (|f*| - f_y) / k_t
     // with the tangential stiffness k_t = alpha m / dt^2; the elastic stick part is stored.
     double heat = 0.0;
@@ -433,8 +480,7 @@ void SolidSph::penalty_contact(double dt) {
     friction_history_[i] = ft;
     a_[i] += (fn + ft) / m_[i];
     force -= fn + ft;
-    friction_heat_ += heat;
-    if (thermal_ && !t_fixed_[i]) T_[i] += heat * rho_[i] / (th_.heat.density * c_heat * m_[i]);
+    deposit_friction_heat(i, heat);
   }
   tool_force_ = force;
 }

@@ -94,6 +94,9 @@ public:
   const Vec2& tool_position() const { return tool_pos_; }
   const Vec2& tool_force() const { return tool_force_; }  // on the tool, N per metre of depth, last step
   double friction_heat() const { return friction_heat_; }  // J per metre of depth, accumulated
+  // friction heat put into the tool (share beta, see ContactOptions::tool_heat_share), J/m
+  double friction_heat_to_tool() const { return friction_heat_tool_; }
+  double tool_heat_share() const { return tool_share_; }  // beta in use (0 without tool conduction)
 
   // Discretise the tool for heat conduction (requires set_tool and enable_thermal): particles of
   // spacing dx inside the tool within `depth` of its lowest edge point; those beyond depth - 3 dx
@@ -148,6 +151,10 @@ private:
   FmfsLaplacian fmfs_;
   double plastic_heat_ = 0.0, heat_lost_ = 0.0, friction_heat_ = 0.0;
   double th_dt_acc_ = 0.0, heat_sunk_ = 0.0;
+  double friction_heat_tool_ = 0.0, tool_share_ = 0.0;
+  std::vector<double> pending_tool_heat_;  // per workpiece particle, J/m, deposited at the next conduction update
+  void deposit_friction_heat(std::size_t i, double heat);
+  double shear_cap(std::size_t i) const;  // Zorev cap of |f_t| for particle i (N/m), infinity when off
   int th_steps_ = 0;
   std::shared_ptr<const ToolGeometry> tool_;
   Vec2 tool_pos_ = Vec2::Zero(), tool_vel_ = Vec2::Zero(), tool_force_ = Vec2::Zero();

@@ -90,7 +90,8 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
   for (std::size_t i = 0; i < x0.size(); ++i)
     if (x0[i].y() > y_cut + 0.25 * dx && x0[i].x() > x_done) members.emplace_back(-x0[i].x(), i);
   std::sort(members.begin(), members.end());
-  double area = 0.0;
+  double area = 0.0, t_sum = 0.0;
+  std::size_t t_n = 0;
   for (std::size_t a = 0; a < members.size();) {
     std::size_t b = a;
     double eps = 0.0;
@@ -109,7 +110,12 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
       r.chip_eps.push_back(eps / cnt);
       r.chip_cx.push_back(cen.x() / cnt);
       r.chip_cy.push_back(cen.y() / cnt);
-      for (std::size_t k = a; k < b; ++k) area += s.mass()[members[k].second] / s.density()[members[k].second];
+      for (std::size_t k = a; k < b; ++k) {
+        const std::size_t i = members[k].second;
+        area += s.mass()[i] / s.density()[i];
+        t_sum += s.temperature()[i];
+        ++t_n;
+      }
     }
     a = b;
   }
@@ -119,6 +125,7 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
     r.chip_s[k] = r.chip_s[k - 1] + std::hypot(r.chip_cx[k] - r.chip_cx[k - 1], r.chip_cy[k] - r.chip_cy[k - 1]);
   r.chip_length = nc ? r.chip_s.back() : 0.0;
   r.chip_thickness = r.chip_length > 0.0 ? area / r.chip_length : nan_value();
+  r.chip_T_mean = t_n ? t_sum / static_cast<double>(t_n) : nan_value();
   r.chip_curl = nan_value();
   r.chip_segments = r.serration_pitch = r.serration_cv = nan_value();
   if (nc < 6) return;
@@ -335,6 +342,7 @@ SolverSpec detail::cutting_spec() {
                {"T_max_x", Dim::length, "x of the hottest workpiece particle relative to the lowest tool edge point"},
                {"T_max_y", Dim::length, "y of the hottest workpiece particle relative to the lowest tool edge point"},
                {"chip_thickness", Dim::length, "chip area / length of the chip's column-centroid line"},
+               {"chip_T_mean", Dim::temperature, "mean temperature of the chip particles at the end"},
                {"chip_ratio", Dim::dimensionless, "chip thickness / uncut thickness"},
                {"chip_curl", Dim::angle, "turning angle of the chip centroid line, first to last third"},
                {"chip_segments", Dim::dimensionless, "peaks of the column-mean eps_p profile along the chip (hysteresis 0.2 x mean)"},
@@ -394,14 +402,14 @@ SolverSpec detail::cutting_spec() {
                    {"heat_lost_fraction", r.plastic_heat + r.friction_heat > 0.0 ? r.heat_lost / (r.plastic_heat + r.friction_heat) : 0.0},
                    {"friction_heat_tool_share", r.friction_heat > 0.0 ? r.friction_heat_tool / r.friction_heat : 0.0},
                    {"T_max_x", r.T_max_at.x()}, {"T_max_y", r.T_max_at.y()},
-                   {"chip_thickness", r.chip_thickness}, {"chip_ratio", r.chip_thickness / c.uncut_thickness},
+                   {"chip_thickness", r.chip_thickness}, {"chip_T_mean", r.chip_T_mean}, {"chip_ratio", r.chip_thickness / c.uncut_thickness},
                    {"chip_curl", r.chip_curl * 3.14159265358979323846 / 180.0}, {"chip_segments", r.chip_segments},
                    {"serration_pitch", r.serration_pitch}, {"serration_cv", r.serration_cv}};
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"T_max", "K"},
                         {"chip_height", "m"}, {"steps", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
                         {"heat_generated", "J/m"}, {"heat_imbalance", "1"}, {"friction_heat", "J/m"}, {"heat_lost_fraction", "1"},
                         {"friction_heat_tool_share", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
-                        {"chip_thickness", "m"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},
+                        {"chip_thickness", "m"}, {"chip_T_mean", "K"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},
                         {"serration_pitch", "m"}, {"serration_cv", "1"}};
     out.notes.push_back("Snapshots: the workpiece states in time order, then (if the tool conducts) the "
                         "final tool particles with their temperature.");

@@ -77,7 +77,7 @@ struct CuttingResult {
   // serration: peaks of the column eps_p profile found with hysteresis 0.2 x mean (segments), mean
   // centroid-line distance between consecutive peaks (pitch), std/mean of the profile (cv).
   std::vector<double> chip_x0, chip_eps, chip_cx, chip_cy, chip_s;
-  double chip_thickness = 0.0, chip_length = 0.0, chip_curl = 0.0;
+  double chip_thickness = 0.0, chip_length = 0.0, chip_curl = 0.0, chip_T_mean = 0.0;
   double chip_segments = 0.0, serration_pitch = 0.0, serration_cv = 0.0;
   double dx = 0.0;
   std::size_t particles = 0, steps = 0;

@@ -78,6 +78,7 @@ public:
   const std::vector<double>& mass() const { return m_; }
   const std::vector<double>& plastic_strain() const { return eps_p_; }
   std::vector<double>& temperature() { return T_; }
+  const std::vector<double>& temperature() const { return T_; }
   const std::vector<Stress3>& deviator() const { return S_; }
   std::vector<Stress3>& deviator() { return S_; }  // e.g. to impose an initial stress
   std::vector<double> pressure() const;

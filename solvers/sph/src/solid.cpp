@@ -269,9 +269,11 @@ void SolidSph::update_neighbours() {
 void SolidSph::accelerations() {
   update_neighbours();
   const std::size_t n = x_.size();
-  const double K = mat_.bulk(), c0 = mat_.bulk_speed(), h = kernel_.h();
-  std::vector<Stress3> sig_r2(n);   // sigma / rho^2
-  std::vector<Mat2> art(n, Mat2::Zero());  // artificial stress R_i
+  const double K = mat_.bulk(), c0 = mat_.bulk_speed(), h = kernel_.h(), support = kernel_.support();
+  sig_r2_.resize(n);                 // sigma / rho^2
+  art_.assign(n, Mat2::Zero());      // artificial stress R_i
+  auto& sig_r2 = sig_r2_;
+  auto& art = art_;
   for (std::size_t i = 0; i < n; ++i) {
     const double p = K * (rho_[i] / mat_.density - 1.0);
     const Stress3 sig = S_[i] - p * Stress3::Identity();
@@ -299,6 +301,11 @@ void SolidSph::accelerations() {
     const std::size_t j = nl_.index[k];
     const Vec2 xij = x_[i] - x_[j];
     const double r = xij.norm();
+    if (r >= support) {  // listed through the Verlet skin, outside the kernel support: no contribution
+      pair_gw_[k] = pair_gw_[mirror_[k]] = Vec2::Zero();
+      pair_w_[k] = pair_w_[mirror_[k]] = 0.0;
+      return;
+    }
     const Vec2 gw = kernel_.gradient(xij, r);
     const double wij = kernel_.value(r);
     pair_gw_[k] = gw;
@@ -323,7 +330,8 @@ void SolidSph::accelerations() {
     acc_i.noalias() += m_[j] * tg;
     acc_j.noalias() -= m_[i] * tg;
   };
-  std::vector<Vec2> acc(n, Vec2::Zero());
+  acc_.assign(n, Vec2::Zero());
+  auto& acc = acc_;
   if (n < detail::kOmpMinParticles) {
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k)
@@ -356,10 +364,14 @@ void SolidSph::step(double dt) {
   for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
   // rates on x^n with v^{n+1/2} (nl_ belongs to x^n)
   const double G = mat_.shear();
-  std::vector<Vec2> xsph(n, Vec2::Zero());
-  std::vector<double> rho_new(n);
-  std::vector<Stress3> s_new(n);
-  std::vector<double> plastic_dT(n, 0.0);
+  xsph_.assign(n, Vec2::Zero());
+  rho_new_.resize(n);
+  s_new_.resize(n);
+  plastic_dT_.assign(n, 0.0);
+  auto& xsph = xsph_;
+  auto& rho_new = rho_new_;
+  auto& s_new = s_new_;
+  auto& plastic_dT = plastic_dT_;
   const double chi_rc =
       thermal_ ? th_.taylor_quinney / (th_.heat.density * th_.heat.specific_heat) : 0.0;
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
@@ -367,6 +379,7 @@ void SolidSph::step(double dt) {
     Mat2 gv = Mat2::Zero(), lren = Mat2::Zero();
     Vec2 xs = Vec2::Zero();
     for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
+      if (pair_w_[k] == 0.0) continue;  // outside the support (Verlet skin): W = 0, grad W = 0
       const std::size_t j = nl_.index[k];
       const Vec2& gw = pair_gw_[k];
       const double vj = m_[j] / rho_[j];
@@ -383,7 +396,9 @@ void SolidSph::step(double dt) {
     rho_new[i] = rho_[i] * (1.0 - dt * trd);
     const Stress3 dev = d - trd / 3.0 * Stress3::Identity();
     Stress3 s = S_[i] + dt * (2.0 * G * dev + w * S_[i] - S_[i] * w);
-    if (mat_.plastic) {
+    // Elastic without evaluating J-C: sigma_y >= A (1 - T*^m) >= A m (1 - T*) for m <= 1 (T*^m is
+    // concave, below its tangent at 1) or A (1 - T*) for m > 1; the rate factor is >= 1.
+    if (mat_.plastic && von_mises(s) > yield_floor(T_[i])) {
       const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i]);
       s = rr.deviator;
       eps_p_[i] += rr.delta_eps_p;
@@ -483,6 +498,13 @@ void SolidSph::penalty_contact(double dt) {
     deposit_friction_heat(i, heat);
   }
   tool_force_ = force;
+}
+
+double SolidSph::yield_floor(double T) const {
+  const auto& jc = mat_.jc;
+  if (!(jc.A > 0.0) || !(jc.B >= 0.0) || !(jc.C >= 0.0)) return 0.0;  // no cheap bound: always return-map
+  const double ts = std::clamp((T - jc.T_ref) / (jc.T_melt - jc.T_ref), 0.0, 1.0);
+  return jc.A * (jc.m <= 1.0 ? jc.m : 1.0) * (1.0 - ts);
 }
 
 Vec2 SolidSph::momentum() const {

@@ -141,6 +141,11 @@ private:
   std::vector<Vec2> pair_gw_;
   std::vector<double> pair_w_;
   std::vector<std::size_t> mirror_;  // index of the reverse pair (j, i) for every listed pair (i, j)
+  // per-step work buffers (kept to avoid allocation in the time loop)
+  std::vector<Stress3> sig_r2_, s_new_;
+  std::vector<Mat2> art_;
+  std::vector<Vec2> acc_, xsph_;
+  std::vector<double> rho_new_, plastic_dT_;
   std::size_t builds_ = 0;
   double time_ = 0.0;
   std::size_t steps_ = 0;
@@ -177,6 +182,7 @@ private:
 
   void accelerations();
   void update_neighbours();
+  double yield_floor(double T) const;  // a lower bound of the J-C flow stress at temperature T
 };
 
 }  // namespace cutbench::sph

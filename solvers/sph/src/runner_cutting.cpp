@@ -334,6 +334,7 @@ SolverSpec detail::cutting_spec() {
                {"tool_T_max", Dim::temperature, "maximum tool temperature"},
                {"chip_height", Dim::length, "highest particle above the original surface"},
                {"steps", Dim::dimensionless, "time steps"},
+               {"particles", Dim::dimensionless, "workpiece particles (particle-steps = particles x steps; the tool particles only conduct heat)"},
                {"heat_generated", Dim::force_per_width, "plastic + friction heat, J per metre of depth"},
                {"heat_imbalance", Dim::dimensionless, "(generated - stored - lost - sunk) / generated"},
                {"friction_heat", Dim::force_per_width, "friction heat, J per metre of depth"},
@@ -396,6 +397,7 @@ SolverSpec detail::cutting_spec() {
     if (!r.tool_snapshot.x.empty()) out.snapshots.push_back(r.tool_snapshot);
     out.scalars = {{"F_c", r.fc_mean}, {"F_t", r.ft_mean}, {"rake_temperature", r.rake_temperature},
                    {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)},
+                   {"particles", static_cast<double>(r.particles)},
                    {"tool_rake_temperature", r.tool_rake_temperature}, {"tool_T_max", r.tool_T_max},
                    {"heat_generated", r.plastic_heat + r.friction_heat}, {"heat_imbalance", r.heat_imbalance},
                    {"friction_heat", r.friction_heat},
@@ -406,7 +408,7 @@ SolverSpec detail::cutting_spec() {
                    {"chip_curl", r.chip_curl * 3.14159265358979323846 / 180.0}, {"chip_segments", r.chip_segments},
                    {"serration_pitch", r.serration_pitch}, {"serration_cv", r.serration_cv}};
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"T_max", "K"},
-                        {"chip_height", "m"}, {"steps", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
+                        {"chip_height", "m"}, {"steps", "1"}, {"particles", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
                         {"heat_generated", "J/m"}, {"heat_imbalance", "1"}, {"friction_heat", "J/m"}, {"heat_lost_fraction", "1"},
                         {"friction_heat_tool_share", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
                         {"chip_thickness", "m"}, {"chip_T_mean", "K"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},

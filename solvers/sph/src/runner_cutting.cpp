@@ -35,6 +35,7 @@ CuttingInputs cutting_inputs(const CuttingSetup& c) {
   in.contact.offset_fraction = c.contact_offset;
   in.contact.tool_heat_share = c.tool_heat_share;
   in.contact.shear_cap = c.shear_cap;
+  in.contact.alpha = c.contact_stiffness;
   in.tool_heat = HeatMaterial{c.tool_conductivity, c.tool_density, c.tool_specific_heat};
   return in;
 }
@@ -324,6 +325,7 @@ SolverSpec detail::cutting_spec() {
       param("snapshots", Dim::dimensionless, "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
       param("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),
       param("tool_heat_share", Dim::dimensionless, "share of the friction heat put into the tool; -1: effusivity partition sqrt(k rho c) (default)", def.tool_heat_share, -1.0, 1.0),
+      param("contact_stiffness", Dim::dimensionless, "penalty contact stiffness alpha (f_N = -alpha m g / dt^2; assumed, not in the paper)", def.contact_stiffness, 0.001, 1.0),
       param("shear_cap", Dim::dimensionless, "1: cap the friction stress at the chip's shear flow stress (Zorev); 0: Coulomb only (paper)", 0.0, 0.0, 1.0),
   };
   s.scalars = {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
@@ -375,6 +377,7 @@ SolverSpec detail::cutting_spec() {
     c.tool_depth = v.at("tool_depth");
     c.tool_heat_share = v.at("tool_heat_share");
     c.shear_cap = v.at("shear_cap") != 0.0;
+    c.contact_stiffness = v.at("contact_stiffness");
     c.history_window = c.cut_distance / c.speed / 200.0;
     const auto r = run_cutting(c, progress);
     RunOutput out;

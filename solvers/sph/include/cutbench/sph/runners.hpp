@@ -46,6 +46,7 @@ struct CuttingSetup {
   double tool_specific_heat = 292.0;   // J/kgK, Table 1
   double tool_heat_share = -1.0;  // friction heat to the tool; < 0: effusivity partition (ContactOptions)
   bool shear_cap = false;         // Zorev cap of the friction stress (ContactOptions::shear_cap)
+  double contact_stiffness = 0.1; // penalty alpha (ContactOptions::alpha), a choice (not in the paper)
 };
 
 // The material, thermal and contact inputs run_cutting() builds from a setup (one place, so that

@@ -87,4 +87,79 @@ BOOST_AUTO_TEST_CASE(block_sliding_with_coulomb_friction) {
  }
 }
 
+
+// Friction heat split between tool and workpiece (ContactOptions::tool_heat_share): the block of the
+// previous test slides on a conducting half-plane tool. With (almost) no conduction the tool holds
+// exactly beta of the friction heat and the block 1 - beta, beta = e_tool / (e_tool + e_work),
+// e = sqrt(k rho c) by default; with conduction the total is conserved.
+BOOST_AUTO_TEST_CASE(friction_heat_split_between_tool_and_workpiece) {
+  const int nx = 12, ny = 5;
+  const double dx = 1e-4, mu = 0.3, v0 = 1.0, t_stop = 1e-4;
+  const double g = v0 / (mu * t_stop);
+  struct Variant {
+    double k_work, k_tool, share;
+    HeatScheme scheme;
+    bool band;
+  };
+  // k tiny: conduction negligible over the run; Table 1 values: conduction on (Brookshaw: pairwise,
+  // conservative; FMFS with the 2h Brookshaw band at surfaces)
+  for (const Variant var :
+       {Variant{1e-9, 1e-9, -1.0, HeatScheme::fmfs, false}, Variant{1e-9, 1e-9, 0.25, HeatScheme::fmfs, false},
+        Variant{7.3, 88.0, -1.0, HeatScheme::brookshaw, false}, Variant{7.3, 88.0, -1.0, HeatScheme::fmfs, true},
+        Variant{7.3, 88.0, -1.0, HeatScheme::fmfs, false}}) {
+    auto x = rectangle_lattice(nx, ny, 0.5 * dx, (nx - 0.5) * dx, 0.5 * dx, (ny - 0.5) * dx);
+    SolidMaterial mat;
+    SolidOptions opt;
+    opt.body_force = Vec2(0.0, -g);
+    SolidSph s(x, dx, mat, opt);
+    for (auto& v : s.velocity()) v = Vec2(v0, 0.0);
+    ThermalOptions th;
+    th.heat = HeatMaterial{var.k_work, 4430.0, 580.0};
+    th.boundary.h_conv = 0.0;
+    th.boundary.emissivity = 0.0;
+    th.scheme = var.scheme;
+    th.brookshaw_band = var.band;
+    s.enable_thermal(th, std::vector<char>(x.size(), 0));
+    ContactOptions c;
+    c.friction = mu;
+    c.model = ContactModel::penalty;
+    c.tool_heat_share = var.share;
+    s.set_tool(std::make_shared<HalfPlane>(Vec2(0.0, 0.0), Vec2(0.0, 1.0)), Vec2::Zero(), Vec2::Zero(), c);
+    const HeatMaterial tool{var.k_tool, 15000.0, 292.0};
+    s.set_tool_thermal(tool, 30.0 * dx);
+    const double e_t = std::sqrt(tool.conductivity * tool.density * tool.specific_heat);
+    const double e_w = std::sqrt(th.heat.conductivity * th.heat.density * th.heat.specific_heat);
+    const double beta = var.share >= 0.0 ? var.share : e_t / (e_t + e_w);
+    BOOST_TEST(s.tool_heat_share() == beta, tt::tolerance(1e-14));
+    const double dt = s.stable_time_step();
+    while (s.time() < 1.5 * t_stop) s.step(dt);
+    const double q = s.friction_heat();
+    const double tool_heat = s.tool_heat_content(), work_heat = s.workpiece_heat_content();
+    std::cout << "friction heat split (k " << var.k_work << " | " << var.k_tool << ", share " << var.share
+              << (var.scheme == HeatScheme::brookshaw ? ", Brookshaw" : var.band ? ", FMFS + band" : ", FMFS (paper mix)")
+              << "): beta " << beta << ", tool " << tool_heat / q << ", workpiece " << work_heat / q << ", sunk "
+              << s.heat_sunk() / q << ", deposited on tool particles " << s.friction_heat_to_tool() / q << "\n";
+    BOOST_TEST(q > 0.0);
+    // total conserved (the residual is the workpiece volume change in rho0 c V T), except by the
+    // paper's mixed scheme (README known problem 1: it gains heat here, next to the heated face)
+    const double total = (tool_heat + work_heat + s.heat_sunk()) / q;
+    if (var.scheme == HeatScheme::fmfs && !var.band && var.k_tool > 1.0)
+      BOOST_TEST(std::abs(total - 1.0) > 5e-3);  // guards the defect: notice if it changes
+    else
+      BOOST_TEST(total == 1.0, tt::tolerance(1e-3));
+    if (var.k_tool < 1.0) {
+      BOOST_TEST(tool_heat / q == beta, tt::tolerance(1e-3));
+      BOOST_TEST(work_heat / q == 1.0 - beta, tt::tolerance(1e-3));
+      // all but the last (at most conduction_interval steps of) pending heat sits on tool particles
+      BOOST_TEST(s.friction_heat_to_tool() / q <= beta + 1e-12);
+      BOOST_TEST(s.friction_heat_to_tool() / q > 0.9 * beta);
+      // and only on tool particles within the kernel support (2h = 3 dx) of the block
+      double far = 0.0;
+      for (std::size_t k = 0; k < s.tool_particles().size(); ++k)
+        if (s.tool_particles()[k].y() < -3.0 * dx) far = std::max(far, std::abs(s.tool_temperature()[k] - 300.0));
+      BOOST_TEST(far < 1e-6);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -4,6 +4,7 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <iostream>
+#include <vector>
 
 #include "cutbench/sph/runners.hpp"
 
@@ -44,25 +45,75 @@ BOOST_AUTO_TEST_CASE(coarse_cut_smoke) {
 
 // Heat audit of a coarse cut: plastic + friction heat = heat stored in workpiece and tool + lost to
 // the air + sunk into the clamped layers. Brookshaw everywhere (reference model) is pairwise
-// conservative; the paper's mixed scheme is not (see README), so only the reference is held tight.
+// conservative, and so is the enhanced model with its default 2h Brookshaw band at surfaces; the
+// paper's exact mix (Brookshaw on surface particles only, brookshaw_band = false) is not (README
+// known problem 1), so it is only reported and guarded loosely.
 BOOST_AUTO_TEST_CASE(cutting_heat_audit) {
-  for (int enhanced = 0; enhanced < 2; ++enhanced) {
+  for (int variant = 0; variant < 3; ++variant) {
     CuttingSetup c;
     c.particles_over_height = 9;
     c.length = 0.6e-3;
     c.cut_distance = 0.1e-3;
     c.history_window = c.cut_distance / c.speed / 5.0;
-    c.enhanced_thermal = enhanced == 1;
+    c.enhanced_thermal = variant > 0;
+    c.brookshaw_band = variant != 2;
     const auto r = run_cutting(c);
-    std::cout << (enhanced ? "enhanced" : "reference") << " heat audit: plastic " << r.plastic_heat << ", friction "
-              << r.friction_heat << ", stored wp " << r.stored_workpiece << ", tool " << r.stored_tool << ", lost "
-              << r.heat_lost << ", sunk " << r.heat_sunk << " J/m, imbalance " << r.heat_imbalance << "\n";
+    const char* name[] = {"reference", "enhanced (band)", "enhanced (paper mix)"};
+    std::cout << name[variant] << " heat audit: plastic " << r.plastic_heat << ", friction "
+              << r.friction_heat << " (tool share " << r.friction_heat_tool / r.friction_heat << "), stored wp "
+              << r.stored_workpiece << ", tool " << r.stored_tool << ", lost " << r.heat_lost << ", sunk "
+              << r.heat_sunk << " J/m, imbalance " << r.heat_imbalance << "\n";
     BOOST_TEST(r.stored_tool > 0.0);
-    if (!enhanced) {
+    if (variant < 2) {
       BOOST_TEST(std::abs(r.heat_imbalance) < 0.01);
     } else {
       BOOST_TEST(std::abs(r.heat_imbalance) < 0.05);
     }
+  }
+}
+
+// Friction heat split in a cut (ContactOptions::tool_heat_share): with the default effusivity
+// partition (beta = 0.82 for Table 1 and the assumed tool density) the tool receives that share of
+// the friction heat (less what is still pending at the end), the chip's contact layer stays cooler
+// and the tool hotter than with all friction heat in the chip (share 0, the former behaviour).
+BOOST_AUTO_TEST_CASE(cutting_friction_heat_split) {
+  CuttingResult r[2];
+  for (int k = 0; k < 2; ++k) {
+    CuttingSetup c;
+    c.particles_over_height = 9;
+    c.length = 0.6e-3;
+    c.cut_distance = 0.12e-3;
+    c.history_window = c.cut_distance / c.speed / 5.0;
+    c.tool_heat_share = k == 0 ? 0.0 : -1.0;
+    r[k] = run_cutting(c);
+    std::cout << "friction heat split, share " << c.tool_heat_share << ": beta " << r[k].tool_share
+              << ", to tool " << r[k].friction_heat_tool / r[k].friction_heat << ", rake T " << r[k].rake_temperature
+              << " K, T_max " << r[k].T_max << " K, tool T_max " << r[k].tool_T_max << " K\n";
+  }
+  const double e_t = std::sqrt(88.0 * 15000.0 * 292.0), e_w = std::sqrt(7.3 * 4430.0 * 580.0);
+  BOOST_TEST(r[1].tool_share == e_t / (e_t + e_w), boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(r[0].friction_heat_tool == 0.0);
+  BOOST_TEST(r[1].friction_heat_tool / r[1].friction_heat <= r[1].tool_share + 1e-12);
+  BOOST_TEST(r[1].friction_heat_tool / r[1].friction_heat > 0.95 * r[1].tool_share);
+  BOOST_TEST(r[1].rake_temperature < r[0].rake_temperature);
+  BOOST_TEST(r[1].tool_T_max > r[0].tool_T_max);
+}
+
+// Serration counter on synthetic eps_p profiles along a chip: n periods of a sine on a mean give n
+// peaks at the period; noise below the hysteresis threshold gives none.
+BOOST_AUTO_TEST_CASE(serration_peak_counter) {
+  const double pi = 3.14159265358979323846, L = 1e-3;
+  for (int periods : {1, 3, 7}) {
+    std::vector<double> s, f, g;
+    for (int k = 0; k <= 400; ++k) {
+      s.push_back(L * k / 400.0);
+      f.push_back(2.0 + std::sin(2.0 * pi * periods * s.back() / L - 0.5 * pi));  // minima at both ends
+      g.push_back(2.0 + 0.15 * std::sin(2.0 * pi * periods * s.back() / L));    // 0.3 peak-to-peak < 0.4
+    }
+    const auto p = serration_peaks(s, f, 0.2);
+    BOOST_TEST(p.size() == static_cast<std::size_t>(periods));
+    if (periods > 1) BOOST_TEST((p.back() - p.front()) / (periods - 1) == L / periods, boost::test_tools::tolerance(1e-2));
+    BOOST_TEST(serration_peaks(s, g, 0.2).empty());
   }
 }
 
@@ -83,6 +134,14 @@ BOOST_AUTO_TEST_CASE(registered_cutting_runner) {
   BOOST_TEST(out.snapshots.size() == 3u);  // two workpiece states + the tool
   BOOST_TEST(std::isfinite(out.scalars.at("F_c")));
   BOOST_TEST(out.scalars.at("steps") > 0.0);
+  BOOST_TEST(out.tables.at(1).name == "chip");
+  // the input report gives what run_cutting() uses by default
+  const auto* inputs = reg.find("sph_cutting_inputs");
+  BOOST_REQUIRE(inputs);
+  const auto in = inputs->run({}, nullptr);
+  BOOST_TEST(in.scalars.at("wp_k") == 7.3);
+  BOOST_TEST(in.scalars.at("tool_k") == 88.0);
+  BOOST_TEST(in.scalars.size() == inputs->scalars.size());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,5 +1,6 @@
 // Johnson-Cook flow stress and radial return against closed forms.
 #include <boost/test/unit_test.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include "cutbench/sph/johnson_cook.hpp"
@@ -54,6 +55,24 @@ BOOST_AUTO_TEST_CASE(radial_return_recovers_manufactured_increment) {
   BOOST_TEST(!el.plastic);
   BOOST_TEST(el.delta_eps_p == 0.0);
   BOOST_TEST((el.deviator - 800e6 * dir).norm() == 0.0);
+}
+
+// The solid skips the radial return when the von Mises stress is below A min(m, 1) (1 - T*), a
+// lower bound of the J-C flow stress (T*^m lies below its tangent at T* = 1 for m <= 1; the rate
+// factor is >= 1 and the strain factor >= A). Check the bound on a grid, for m < 1 and m > 1.
+BOOST_AUTO_TEST_CASE(cheap_lower_bound_of_flow_stress) {
+  for (double m : {0.8, 0.3, 1.0, 1.7}) {
+    JohnsonCook jc;
+    jc.m = m;
+    for (int a = 0; a <= 40; ++a)
+      for (double eps : {0.0, 1e-6, 0.1, 2.0})
+        for (double rate : {0.0, 1.0, 1e5}) {
+          const double T = jc.T_ref - 50.0 + (jc.T_melt - jc.T_ref + 100.0) * a / 40.0;
+          const double ts = std::min(1.0, std::max(0.0, (T - jc.T_ref) / (jc.T_melt - jc.T_ref)));
+          const double floor = jc.A * std::min(m, 1.0) * (1.0 - ts);
+          BOOST_TEST(floor <= jc.flow_stress(eps, rate, T) * (1.0 + 1e-14));
+        }
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -10,7 +10,7 @@ namespace cutbench::sph {
 namespace {
 double thermal_factor(const JohnsonCook& jc, double T) {
   const double ts = std::clamp((T - jc.T_ref) / (jc.T_melt - jc.T_ref), 0.0, 1.0);
-  return 1.0 - std::pow(ts, jc.m);
+  return ts > 0.0 ? 1.0 - std::pow(ts, jc.m) : 1.0;  // pow(0, m) = 0: skip the call (cold particles)
 }
 double rate_factor(const JohnsonCook& jc, double rate) {
   const double r = rate / jc.eps_rate_ref;

@@ -9,6 +9,7 @@
 // heat sink at T_inf.
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "cutbench/common/errors.hpp"
 #include "cutbench/sph/lattice.hpp"
@@ -17,6 +18,136 @@
 #include "cutbench/sph/solid.hpp"
 
 namespace cutbench::sph {
+
+CuttingInputs cutting_inputs(const CuttingSetup& c) {
+  CuttingInputs in;
+  in.material.plastic = true;
+  if (c.enhanced_thermal) {
+    in.thermal.scheme = HeatScheme::fmfs;
+  } else {  // reference model: Brookshaw everywhere, no convection or radiation
+    in.thermal.scheme = HeatScheme::brookshaw;
+    in.thermal.boundary.h_conv = 0.0;
+    in.thermal.boundary.emissivity = 0.0;
+  }
+  in.thermal.brookshaw_band = c.brookshaw_band;
+  in.contact.friction = c.friction;
+  in.contact.model = c.penalty_contact ? ContactModel::penalty : ContactModel::velocity;
+  in.contact.offset_fraction = c.contact_offset;
+  in.contact.tool_heat_share = c.tool_heat_share;
+  in.contact.shear_cap = c.shear_cap;
+  in.contact.alpha = c.contact_stiffness;
+  in.tool_heat = HeatMaterial{c.tool_conductivity, c.tool_density, c.tool_specific_heat};
+  return in;
+}
+
+std::vector<double> serration_peaks(const std::vector<double>& s, const std::vector<double>& f, double rel_threshold) {
+  std::vector<double> peaks;
+  const std::size_t n = std::min(s.size(), f.size());
+  if (n == 0) return peaks;
+  double mean = 0.0;
+  for (std::size_t k = 0; k < n; ++k) mean += f[k];
+  mean /= static_cast<double>(n);
+  const double thr = rel_threshold * std::abs(mean);
+  double lo = f[0], hi = f[0], s_hi = s[0];
+  bool rising = true;
+  for (std::size_t k = 1; k < n; ++k) {
+    const double e = f[k];
+    if (rising) {
+      if (e < lo) {  // still descending: restart the rise from here
+        lo = hi = e;
+        s_hi = s[k];
+      }
+      if (e > hi) {
+        hi = e;
+        s_hi = s[k];
+      }
+      if (hi - lo > thr && hi - e > thr) {  // a peak that rose and fell by more than thr
+        peaks.push_back(s_hi);
+        rising = false;
+        lo = e;
+      }
+    } else {
+      if (e < lo) lo = e;
+      if (e - lo > thr) {
+        rising = true;
+        hi = e;
+        s_hi = s[k];
+      }
+    }
+  }
+  return peaks;
+}
+
+namespace {
+
+// Chip metrics (see CuttingResult). x0: initial positions.
+void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const SolidSph& s, CuttingResult& r) {
+  const double dx = r.dx;
+  const double x_done = s.tool_position().x() + 0.5 * c.uncut_thickness;  // columns the tool has passed
+  const double y_cut = c.height - c.uncut_thickness;
+  // columns of the initial lattice, in cutting order (decreasing x0)
+  std::vector<std::size_t> col_first;
+  std::vector<std::pair<double, std::size_t>> members;
+  for (std::size_t i = 0; i < x0.size(); ++i)
+    if (x0[i].y() > y_cut + 0.25 * dx && x0[i].x() > x_done) members.emplace_back(-x0[i].x(), i);
+  std::sort(members.begin(), members.end());
+  double area = 0.0, t_sum = 0.0;
+  std::size_t t_n = 0;
+  for (std::size_t a = 0; a < members.size();) {
+    std::size_t b = a;
+    double eps = 0.0;
+    Vec2 cen = Vec2::Zero();
+    std::size_t lifted = 0;
+    while (b < members.size() && std::abs(members[b].first - members[a].first) < 0.25 * dx) {
+      const std::size_t i = members[b].second;
+      eps += s.plastic_strain()[i];
+      cen += s.positions()[i];
+      lifted += s.positions()[i].y() > c.height ? 1 : 0;
+      ++b;
+    }
+    const double cnt = static_cast<double>(b - a);
+    if (2 * lifted > b - a) {  // most of the column went into the chip
+      r.chip_x0.push_back(-members[a].first);
+      r.chip_eps.push_back(eps / cnt);
+      r.chip_cx.push_back(cen.x() / cnt);
+      r.chip_cy.push_back(cen.y() / cnt);
+      for (std::size_t k = a; k < b; ++k) {
+        const std::size_t i = members[k].second;
+        area += s.mass()[i] / s.density()[i];
+        t_sum += s.temperature()[i];
+        ++t_n;
+      }
+    }
+    a = b;
+  }
+  const std::size_t nc = r.chip_x0.size();
+  r.chip_s.assign(nc, 0.0);
+  for (std::size_t k = 1; k < nc; ++k)
+    r.chip_s[k] = r.chip_s[k - 1] + std::hypot(r.chip_cx[k] - r.chip_cx[k - 1], r.chip_cy[k] - r.chip_cy[k - 1]);
+  r.chip_length = nc ? r.chip_s.back() : 0.0;
+  r.chip_thickness = r.chip_length > 0.0 ? area / r.chip_length : nan_value();
+  r.chip_T_mean = t_n ? t_sum / static_cast<double>(t_n) : nan_value();
+  r.chip_curl = nan_value();
+  r.chip_segments = r.serration_pitch = r.serration_cv = nan_value();
+  if (nc < 6) return;
+  // curl: direction of the centroid line over the first third versus the last third (degrees)
+  const std::size_t third = nc / 3;
+  const Vec2 d0(r.chip_cx[third] - r.chip_cx[0], r.chip_cy[third] - r.chip_cy[0]);
+  const Vec2 d1(r.chip_cx[nc - 1] - r.chip_cx[nc - 1 - third], r.chip_cy[nc - 1] - r.chip_cy[nc - 1 - third]);
+  r.chip_curl = std::abs(std::atan2(d0.x() * d1.y() - d0.y() * d1.x(), d0.dot(d1))) * 180.0 / 3.14159265358979323846;
+  // serration of the eps_p profile
+  double mean = 0.0, var = 0.0;
+  for (double e : r.chip_eps) mean += e;
+  mean /= static_cast<double>(nc);
+  for (double e : r.chip_eps) var += (e - mean) * (e - mean);
+  r.serration_cv = mean > 0.0 ? std::sqrt(var / static_cast<double>(nc)) / mean : 0.0;
+  const auto peaks = serration_peaks(r.chip_s, r.chip_eps, 0.2);
+  r.chip_segments = static_cast<double>(peaks.size());
+  r.serration_pitch = peaks.size() >= 2 ? (peaks.back() - peaks.front()) / static_cast<double>(peaks.size() - 1)
+                                        : nan_value();
+}
+
+}  // namespace
 
 CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   if (c.particles_over_height < 4) throw InputError("particles_over_height", "needs at least 4");
@@ -30,31 +161,15 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   const double lim = (static_cast<double>(c.fixed_layers) - 0.5) * dx;
   for (std::size_t i = 0; i < x.size(); ++i) fixed[i] = x[i].y() < lim || x[i].x() < lim;
 
-  SolidMaterial mat;
-  mat.plastic = true;
-  SolidOptions opt;
-  SolidSph s(x, dx, mat, opt);
+  const CuttingInputs in = cutting_inputs(c);
+  SolidSph s(x, dx, in.material, in.options, in.h_over_dx);
   s.set_fixed(fixed);
-  ThermalOptions th;
-  if (c.enhanced_thermal) {
-    th.scheme = HeatScheme::fmfs;
-  } else {  // reference model: Brookshaw everywhere, no convection or radiation
-    th.scheme = HeatScheme::brookshaw;
-    th.boundary.h_conv = 0.0;
-    th.boundary.emissivity = 0.0;
-  }
-  th.brookshaw_band = c.brookshaw_band;
-  s.enable_thermal(th, fixed);
-  ContactOptions contact;
-  contact.friction = c.friction;
-  contact.model = c.penalty_contact ? ContactModel::penalty : ContactModel::velocity;
-  contact.offset_fraction = c.contact_offset;
+  s.enable_thermal(in.thermal, fixed);
   const double x_tool = dx * static_cast<double>(nx - 1) + 0.5 * dx + c.edge_radius + 0.5 * dx;
   const double y_low = c.height - c.uncut_thickness;
   s.set_tool(cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height),
-             Vec2(x_tool, y_low), Vec2(-c.speed, 0.0), contact);
-  if (c.tool_conduction)
-    s.set_tool_thermal(HeatMaterial{88.0, c.tool_density, 292.0}, std::max(c.tool_depth, 8.0 * dx));
+             Vec2(x_tool, y_low), Vec2(-c.speed, 0.0), in.contact);
+  if (c.tool_conduction) s.set_tool_thermal(in.tool_heat, std::max(c.tool_depth, 8.0 * dx));
 
   CuttingResult r;
   r.dx = dx;
@@ -122,7 +237,10 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   const auto tool = cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height);
   for (std::size_t i = 0; i < x.size(); ++i) {
     const Vec2& p = s.positions()[i];
-    r.T_max = std::max(r.T_max, s.temperature()[i]);
+    if (s.temperature()[i] > r.T_max) {
+      r.T_max = s.temperature()[i];
+      r.T_max_at = p - s.tool_position();
+    }
     chip_top = std::max(chip_top, p.y());
     if (fixed[i]) continue;
     const auto sd = tool->at(p - s.tool_position());
@@ -159,6 +277,9 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   }
   r.tool_snapshot.add("T", "K", s.tool_temperature());
   r.friction_heat = s.friction_heat();
+  r.friction_heat_tool = s.friction_heat_to_tool();
+  r.tool_share = s.tool_heat_share();
+  chip_metrics(c, x, s, r);
   r.plastic_heat = s.plastic_heat();
   r.stored_workpiece = s.workpiece_heat_content();
   r.stored_tool = s.tool_heat_content();
@@ -194,7 +315,7 @@ SolverSpec detail::cutting_spec() {
       param("clearance", Dim::angle, "clearance angle", def.clearance, 0.5 * kDeg, 45 * kDeg),
       param("edge_radius", Dim::length, "cutting-edge radius", def.edge_radius, 0.0, 1e-3),
       param("enhanced_thermal", Dim::dimensionless, "1: FMFS + convection/radiation (paper); 0: reference", 1.0, 0.0, 1.0),
-      param("brookshaw_band", Dim::dimensionless, "1: Brookshaw on a 2h band at surfaces (energy-conserving variant)", 0.0, 0.0, 1.0),
+      param("brookshaw_band", Dim::dimensionless, "1 (default): Brookshaw on a 2h band at surfaces (energy-conserving); 0: the paper's mix (Brookshaw on surface particles only)", 1.0, 0.0, 1.0),
       param("fixed_layers", Dim::dimensionless, "clamped particle layers at the bottom and the far end", def.fixed_layers, 1, 20),
       param("tool_conduction", Dim::dimensionless, "1: tool particles conduct heat", 1.0, 0.0, 1.0),
       param("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5),
@@ -203,6 +324,9 @@ SolverSpec detail::cutting_spec() {
       param("contact_offset", Dim::dimensionless, "contact surface offset in particle spacings", def.contact_offset, 0.0, 1.0),
       param("snapshots", Dim::dimensionless, "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
       param("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),
+      param("tool_heat_share", Dim::dimensionless, "share of the friction heat put into the tool; -1: effusivity partition sqrt(k rho c) (default)", def.tool_heat_share, -1.0, 1.0),
+      param("contact_stiffness", Dim::dimensionless, "penalty contact stiffness alpha (f_N = -alpha m g / dt^2; assumed, not in the paper)", def.contact_stiffness, 0.001, 1.0),
+      param("shear_cap", Dim::dimensionless, "1: cap the friction stress at the chip's shear flow stress (Zorev); 0: Coulomb only (paper)", 0.0, 0.0, 1.0),
   };
   s.scalars = {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
                {"F_t", Dim::force_per_width, "mean thrust force per unit width (steady part)"},
@@ -212,8 +336,21 @@ SolverSpec detail::cutting_spec() {
                {"tool_T_max", Dim::temperature, "maximum tool temperature"},
                {"chip_height", Dim::length, "highest particle above the original surface"},
                {"steps", Dim::dimensionless, "time steps"},
+               {"particles", Dim::dimensionless, "workpiece particles (particle-steps = particles x steps; the tool particles only conduct heat)"},
                {"heat_generated", Dim::force_per_width, "plastic + friction heat, J per metre of depth"},
-               {"heat_imbalance", Dim::dimensionless, "(generated - stored - lost - sunk) / generated"}};
+               {"heat_imbalance", Dim::dimensionless, "(generated - stored - lost - sunk) / generated"},
+               {"friction_heat", Dim::force_per_width, "friction heat, J per metre of depth"},
+               {"heat_lost_fraction", Dim::dimensionless, "heat lost to the air by convection and radiation / heat generated"},
+               {"friction_heat_tool_share", Dim::dimensionless, "fraction of the friction heat put into the tool"},
+               {"T_max_x", Dim::length, "x of the hottest workpiece particle relative to the lowest tool edge point"},
+               {"T_max_y", Dim::length, "y of the hottest workpiece particle relative to the lowest tool edge point"},
+               {"chip_thickness", Dim::length, "chip area / length of the chip's column-centroid line"},
+               {"chip_T_mean", Dim::temperature, "mean temperature of the chip particles at the end"},
+               {"chip_ratio", Dim::dimensionless, "chip thickness / uncut thickness"},
+               {"chip_curl", Dim::angle, "turning angle of the chip centroid line, first to last third"},
+               {"chip_segments", Dim::dimensionless, "peaks of the column-mean eps_p profile along the chip (hysteresis 0.2 x mean)"},
+               {"serration_pitch", Dim::length, "mean distance along the chip between eps_p peaks (NaN below 2 peaks)"},
+               {"serration_cv", Dim::dimensionless, "std / mean of the column-mean eps_p profile along the chip"}};
   s.run = [](const Values& v, const ProgressFn& progress) {
     CuttingSetup c;
     const double n = v.at("particles_over_height");
@@ -238,6 +375,9 @@ SolverSpec detail::cutting_spec() {
     c.contact_offset = v.at("contact_offset");
     c.tool_density = v.at("tool_density");
     c.tool_depth = v.at("tool_depth");
+    c.tool_heat_share = v.at("tool_heat_share");
+    c.shear_cap = v.at("shear_cap") != 0.0;
+    c.contact_stiffness = v.at("contact_stiffness");
     c.history_window = c.cut_distance / c.speed / 200.0;
     const auto r = run_cutting(c, progress);
     RunOutput out;
@@ -248,22 +388,110 @@ SolverSpec detail::cutting_spec() {
     t.add("F_c", "N/m", r.fc);
     t.add("F_t", "N/m", r.ft);
     out.tables.push_back(std::move(t));
+    Table chip;
+    chip.name = "chip";
+    chip.add("x0", "m", r.chip_x0);
+    chip.add("s", "m", r.chip_s);
+    chip.add("eps_p", "1", r.chip_eps);
+    chip.add("cx", "m", r.chip_cx);
+    chip.add("cy", "m", r.chip_cy);
+    out.tables.push_back(std::move(chip));
     out.snapshots = r.snapshots;
     if (!r.tool_snapshot.x.empty()) out.snapshots.push_back(r.tool_snapshot);
     out.scalars = {{"F_c", r.fc_mean}, {"F_t", r.ft_mean}, {"rake_temperature", r.rake_temperature},
                    {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)},
+                   {"particles", static_cast<double>(r.particles)},
                    {"tool_rake_temperature", r.tool_rake_temperature}, {"tool_T_max", r.tool_T_max},
-                   {"heat_generated", r.plastic_heat + r.friction_heat}, {"heat_imbalance", r.heat_imbalance}};
+                   {"heat_generated", r.plastic_heat + r.friction_heat}, {"heat_imbalance", r.heat_imbalance},
+                   {"friction_heat", r.friction_heat},
+                   {"heat_lost_fraction", r.plastic_heat + r.friction_heat > 0.0 ? r.heat_lost / (r.plastic_heat + r.friction_heat) : 0.0},
+                   {"friction_heat_tool_share", r.friction_heat > 0.0 ? r.friction_heat_tool / r.friction_heat : 0.0},
+                   {"T_max_x", r.T_max_at.x()}, {"T_max_y", r.T_max_at.y()},
+                   {"chip_thickness", r.chip_thickness}, {"chip_T_mean", r.chip_T_mean}, {"chip_ratio", r.chip_thickness / c.uncut_thickness},
+                   {"chip_curl", r.chip_curl * 3.14159265358979323846 / 180.0}, {"chip_segments", r.chip_segments},
+                   {"serration_pitch", r.serration_pitch}, {"serration_cv", r.serration_cv}};
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"T_max", "K"},
-                        {"chip_height", "m"}, {"steps", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
-                        {"heat_generated", "J/m"}, {"heat_imbalance", "1"}};
+                        {"chip_height", "m"}, {"steps", "1"}, {"particles", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
+                        {"heat_generated", "J/m"}, {"heat_imbalance", "1"}, {"friction_heat", "J/m"}, {"heat_lost_fraction", "1"},
+                        {"friction_heat_tool_share", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
+                        {"chip_thickness", "m"}, {"chip_T_mean", "K"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},
+                        {"serration_pitch", "m"}, {"serration_cv", "1"}};
     out.notes.push_back("Snapshots: the workpiece states in time order, then (if the tool conducts) the "
                         "final tool particles with their temperature.");
     out.notes.push_back("Tool is rigid; its particles conduct heat (k 88 W/mK, c_p 292 J/kgK, density "
                         "assumed) and exchange heat with the workpiece by harmonic-mean Brookshaw pairs; "
-                        "all friction heat goes to the workpiece particle (eta = 1). Stabiliser "
+                        "the friction heat (eta = 1) is split between tool and chip by the effusivity partition (default). Stabiliser "
                         "parameters (artificial viscosity 1/1, artificial stress 0.3, XSPH 0.5) are "
                         "assumed, the paper does not list them.");
+    return out;
+  };
+  return s;
+}
+
+}  // namespace cutbench::sph
+
+namespace cutbench::sph {
+
+// sph_cutting_inputs: the values sph_cutting runs with by default (CuttingSetup defaults turned into
+// solver inputs by cutting_inputs()), for the Table 1 case to compare with the paper.
+SolverSpec detail::cutting_inputs_spec() {
+  SolverSpec s;
+  s.name = "sph_cutting_inputs";
+  s.description = "Default inputs of sph_cutting (geometry, material, thermal, contact) as used by the runner";
+  s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Table 1 and Sec. 5.2";
+  struct Item {
+    const char* name;
+    Dim dim;
+    const char* unit;
+    const char* what;
+  };
+  static const Item items[] = {
+      {"tool_clearance", Dim::angle, "rad", "clearance angle"}, {"tool_rake", Dim::angle, "rad", "rake angle"},
+      {"tool_edge_radius", Dim::length, "m", "edge radius"}, {"vc", Dim::velocity, "m/s", "cutting speed"},
+      {"tool_k", Dim::conductivity, "W/m/K", "tool conductivity"}, {"tool_cp", Dim::specific_heat, "J/kg/K", "tool specific heat"},
+      {"wp_lx", Dim::length, "m", "workpiece length"}, {"wp_ly", Dim::length, "m", "workpiece height"},
+      {"tu", Dim::length, "m", "uncut chip thickness"}, {"lc", Dim::length, "m", "cut distance"},
+      {"wp_rho", Dim::density, "kg/m^3", "workpiece density"}, {"wp_E", Dim::stress, "Pa", "Young's modulus"},
+      {"wp_nu", Dim::dimensionless, "1", "Poisson ratio"}, {"wp_k", Dim::conductivity, "W/m/K", "workpiece conductivity"},
+      {"wp_cp", Dim::specific_heat, "J/kg/K", "workpiece specific heat"}, {"Tr", Dim::temperature, "K", "J-C reference temperature"},
+      {"Tm", Dim::temperature, "K", "J-C melting temperature"}, {"mu", Dim::dimensionless, "1", "friction coefficient"},
+      {"chi", Dim::dimensionless, "1", "plastic work to heat"}, {"eta", Dim::dimensionless, "1", "friction work to heat"},
+      {"hc", Dim::heat_transfer, "W/m^2/K", "convection coefficient (enhanced model)"},
+      {"emissivity", Dim::dimensionless, "1", "emissivity (enhanced model)"},
+      {"jc_A", Dim::stress, "Pa", "J-C A"}, {"jc_B", Dim::stress, "Pa", "J-C B"}, {"jc_C", Dim::dimensionless, "1", "J-C C"},
+      {"jc_m", Dim::dimensionless, "1", "J-C m"}, {"jc_n", Dim::dimensionless, "1", "J-C n"},
+      {"T_inf", Dim::temperature, "K", "ambient and clamped-layer temperature"},
+      {"particles_along_ly", Dim::dimensionless, "1", "particles over the height"},
+      {"surface_lambda", Dim::dimensionless, "1", "surface-detection eigenvalue threshold"},
+      {"h_over_dx", Dim::dimensionless, "1", "smoothing length / particle spacing"},
+  };
+  for (const auto& it : items) s.scalars.push_back({it.name, it.dim, it.what});
+  s.run = [](const Values&, const ProgressFn&) {
+    const CuttingSetup c;
+    const CuttingInputs in = cutting_inputs(c);
+    const auto& jc = in.material.jc;
+    const std::map<std::string, double> v = {
+        {"tool_clearance", c.clearance}, {"tool_rake", c.rake}, {"tool_edge_radius", c.edge_radius},
+        {"vc", c.speed}, {"tool_k", in.tool_heat.conductivity}, {"tool_cp", in.tool_heat.specific_heat},
+        {"wp_lx", c.length}, {"wp_ly", c.height}, {"tu", c.uncut_thickness}, {"lc", c.cut_distance},
+        {"wp_rho", in.material.density}, {"wp_E", in.material.young}, {"wp_nu", in.material.poisson},
+        {"wp_k", in.thermal.heat.conductivity}, {"wp_cp", in.thermal.heat.specific_heat}, {"Tr", jc.T_ref},
+        {"Tm", jc.T_melt}, {"mu", in.contact.friction}, {"chi", in.thermal.taylor_quinney},
+        {"eta", in.contact.heat_fraction}, {"hc", in.thermal.boundary.h_conv},
+        {"emissivity", in.thermal.boundary.emissivity}, {"jc_A", jc.A}, {"jc_B", jc.B}, {"jc_C", jc.C},
+        {"jc_m", jc.m}, {"jc_n", jc.n}, {"T_inf", in.thermal.boundary.T_ambient},
+        {"particles_along_ly", static_cast<double>(c.particles_over_height)},
+        {"surface_lambda", in.thermal.surface.lambda_interior}, {"h_over_dx", in.h_over_dx},
+    };
+    RunOutput out;
+    for (const auto& it : items) {
+      out.scalars[it.name] = v.at(it.name);
+      out.scalar_units[it.name] = it.unit;
+    }
+    // consistency of the runner's own values that must agree between the solid and the heat model
+    if (in.thermal.heat.density != in.material.density)
+      throw NumericalError("sph_cutting_inputs: mechanical and thermal densities differ");
+    out.notes.push_back("Values are read from CuttingSetup{} through cutting_inputs(), the same path run_cutting() uses.");
     return out;
   };
   return s;

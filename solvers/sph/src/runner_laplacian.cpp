@@ -122,6 +122,7 @@ void register_solvers(SolverRegistry& registry) {
   if (!registry.find("sph_laplacian")) registry.add(detail::laplacian_spec());
   if (!registry.find("sph_heat")) registry.add(detail::heat_spec());
   if (!registry.find("sph_cutting")) registry.add(detail::cutting_spec());
+  if (!registry.find("sph_cutting_inputs")) registry.add(detail::cutting_inputs_spec());
 }
 
 }  // namespace cutbench::sph

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "cutbench/common/errors.hpp"
 #include "parallel.hpp"
@@ -85,12 +86,40 @@ void SolidSph::set_tool_thermal(HeatMaterial tool_heat, double depth) {
   heat_masks(tool_nl_, s, tool_fixed_, th_.brookshaw_band, tool_use_fmfs_, tool_loss_);
   tool_fmfs_.update(view);
   tool_thermal_ = true;
+  if (contact_.tool_heat_share >= 0.0) {
+    tool_share_ = contact_.tool_heat_share;
+  } else {
+    const double e_tool = std::sqrt(tool_heat_.conductivity * tool_heat_.density * tool_heat_.specific_heat);
+    const double e_work = std::sqrt(th_.heat.conductivity * th_.heat.density * th_.heat.specific_heat);
+    tool_share_ = e_tool / (e_tool + e_work);
+  }
+  pending_tool_heat_.assign(x_.size(), 0.0);
+}
+
+void SolidSph::deposit_friction_heat(std::size_t i, double heat) {
+  friction_heat_ += heat;
+  if (!thermal_ || t_fixed_[i]) return;
+  double to_tool = 0.0;
+  if (tool_thermal_ && tool_share_ > 0.0) {
+    to_tool = tool_share_ * heat;
+    pending_tool_heat_[i] += to_tool;
+  }
+  // in the audit metric rho0 c V_i T_i this adds exactly heat - to_tool
+  T_[i] += (heat - to_tool) * rho_[i] / (th_.heat.density * th_.heat.specific_heat * m_[i]);
+}
+
+double SolidSph::shear_cap(std::size_t i) const {
+  if (!contact_.shear_cap || !mat_.plastic) return std::numeric_limits<double>::infinity();
+  // shear flow stress at the particle's state (reference rate: the cap is a stress bound) times
+  // the face length dx it covers (per unit depth)
+  return mat_.jc.flow_stress(eps_p_[i], 0.0, T_[i]) / std::sqrt(3.0) * dx_;
 }
 
 double SolidSph::tool_heat_content() const {
   double e = 0.0;
   for (std::size_t i = 0; i < tool_x_.size(); ++i)
     e += tool_heat_.density * tool_heat_.specific_heat * tool_V_[i] * (tool_T_[i] - th_.boundary.T_ambient);
+  for (double q : pending_tool_heat_) e += q;  // friction heat not yet deposited on tool particles
   return e;
 }
 
@@ -148,6 +177,28 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
           loss[i] = 0;
           tool_loss[cross.index[k]] = 0;
         }
+    // friction heat share of the tool: onto the (non-sink) tool particles in the support of the
+    // heated workpiece particle, kernel-weighted; back to the workpiece particle if there are none
+    const double rc_tool = tool_heat_.density * tool_heat_.specific_heat;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double q = pending_tool_heat_[i];
+      if (q == 0.0) continue;
+      pending_tool_heat_[i] = 0.0;
+      double wsum = 0.0;
+      for (std::size_t k = cross.begin(i); k < cross.end(i); ++k)
+        if (!tool_fixed_[cross.index[k]]) wsum += kernel_.value((x_[i] - tool_world[cross.index[k]]).norm());
+      if (wsum > 0.0) {
+        for (std::size_t k = cross.begin(i); k < cross.end(i); ++k) {
+          const std::size_t j = cross.index[k];
+          if (tool_fixed_[j]) continue;
+          const double w = kernel_.value((x_[i] - tool_world[j]).norm()) / wsum;
+          tool_T_[j] += q * w / (rc_tool * tool_V_[j]);
+        }
+        friction_heat_tool_ += q;
+      } else {
+        T_[i] += q / (rc * vol[i]);
+      }
+    }
   }
   const ParticleView tool_view{tool_x_, tool_V_, tool_nl_, kernel_};
   for (int k = 0; k < sub; ++k) {
@@ -218,9 +269,11 @@ void SolidSph::update_neighbours() {
 void SolidSph::accelerations() {
   update_neighbours();
   const std::size_t n = x_.size();
-  const double K = mat_.bulk(), c0 = mat_.bulk_speed(), h = kernel_.h();
-  std::vector<Stress3> sig_r2(n);   // sigma / rho^2
-  std::vector<Mat2> art(n, Mat2::Zero());  // artificial stress R_i
+  const double K = mat_.bulk(), c0 = mat_.bulk_speed(), h = kernel_.h(), support = kernel_.support();
+  sig_r2_.resize(n);                 // sigma / rho^2
+  art_.assign(n, Mat2::Zero());      // artificial stress R_i
+  auto& sig_r2 = sig_r2_;
+  auto& art = art_;
   for (std::size_t i = 0; i < n; ++i) {
     const double p = K * (rho_[i] / mat_.density - 1.0);
     const Stress3 sig = S_[i] - p * Stress3::Identity();
@@ -248,6 +301,11 @@ void SolidSph::accelerations() {
     const std::size_t j = nl_.index[k];
     const Vec2 xij = x_[i] - x_[j];
     const double r = xij.norm();
+    if (r >= support) {  // listed through the Verlet skin, outside the kernel support: no contribution
+      pair_gw_[k] = pair_gw_[mirror_[k]] = Vec2::Zero();
+      pair_w_[k] = pair_w_[mirror_[k]] = 0.0;
+      return;
+    }
     const Vec2 gw = kernel_.gradient(xij, r);
     const double wij = kernel_.value(r);
     pair_gw_[k] = gw;
@@ -272,7 +330,8 @@ void SolidSph::accelerations() {
     acc_i.noalias() += m_[j] * tg;
     acc_j.noalias() -= m_[i] * tg;
   };
-  std::vector<Vec2> acc(n, Vec2::Zero());
+  acc_.assign(n, Vec2::Zero());
+  auto& acc = acc_;
   if (n < detail::kOmpMinParticles) {
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k)
@@ -305,10 +364,14 @@ void SolidSph::step(double dt) {
   for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
   // rates on x^n with v^{n+1/2} (nl_ belongs to x^n)
   const double G = mat_.shear();
-  std::vector<Vec2> xsph(n, Vec2::Zero());
-  std::vector<double> rho_new(n);
-  std::vector<Stress3> s_new(n);
-  std::vector<double> plastic_dT(n, 0.0);
+  xsph_.assign(n, Vec2::Zero());
+  rho_new_.resize(n);
+  s_new_.resize(n);
+  plastic_dT_.assign(n, 0.0);
+  auto& xsph = xsph_;
+  auto& rho_new = rho_new_;
+  auto& s_new = s_new_;
+  auto& plastic_dT = plastic_dT_;
   const double chi_rc =
       thermal_ ? th_.taylor_quinney / (th_.heat.density * th_.heat.specific_heat) : 0.0;
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
@@ -316,6 +379,7 @@ void SolidSph::step(double dt) {
     Mat2 gv = Mat2::Zero(), lren = Mat2::Zero();
     Vec2 xs = Vec2::Zero();
     for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
+      if (pair_w_[k] == 0.0) continue;  // outside the support (Verlet skin): W = 0, grad W = 0
       const std::size_t j = nl_.index[k];
       const Vec2& gw = pair_gw_[k];
       const double vj = m_[j] / rho_[j];
@@ -332,7 +396,9 @@ void SolidSph::step(double dt) {
     rho_new[i] = rho_[i] * (1.0 - dt * trd);
     const Stress3 dev = d - trd / 3.0 * Stress3::Identity();
     Stress3 s = S_[i] + dt * (2.0 * G * dev + w * S_[i] - S_[i] * w);
-    if (mat_.plastic) {
+    // Elastic without evaluating J-C: sigma_y >= A (1 - T*^m) >= A m (1 - T*) for m <= 1 (T*^m is
+    // concave, below its tangent at 1) or A (1 - T*) for m > 1; the rate factor is >= 1.
+    if (mat_.plastic && von_mises(s) > yield_floor(T_[i])) {
       const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i]);
       s = rr.deviator;
       eps_p_[i] += rr.delta_eps_p;
@@ -372,7 +438,6 @@ void SolidSph::set_tool(std::shared_ptr<const ToolGeometry> tool, const Vec2& po
 void SolidSph::apply_contact(double dt) {
   tool_pos_ += dt * tool_vel_;
   const double offset = contact_.offset_fraction * dx_;
-  const double c_heat = thermal_ ? th_.heat.specific_heat : 0.0;
   Vec2 force = Vec2::Zero();
   for (std::size_t i = 0; i < x_.size(); ++i) {
     if (fixed_[i]) continue;
@@ -386,7 +451,7 @@ void SolidSph::apply_contact(double dt) {
     if (jn <= 0.0) continue;
     const Vec2 vt = vrel - vn * sd.normal;
     Vec2 jt = -m_[i] * vt;
-    const double limit = contact_.friction * jn;
+    const double limit = std::min(contact_.friction * jn, shear_cap(i) * dt);
     if (jt.norm() > limit) jt *= limit / jt.norm();
     const Vec2 impulse = jn * sd.normal + jt;
     v_[i] += impulse / m_[i];
@@ -394,9 +459,7 @@ void SolidSph::apply_contact(double dt) {
     const Vec2 vrel_after = v_[i] - tool_vel_;
     const double slip = (vrel_after - vrel_after.dot(sd.normal) * sd.normal).norm();
     const double heat = contact_.heat_fraction * jt.norm() * slip;  // J/m over this step
-    friction_heat_ += heat;
-    // in the audit metric rho0 c V_i T_i this adds exactly `heat`
-    if (thermal_ && !t_fixed_[i]) T_[i] += heat * rho_[i] / (th_.heat.density * c_heat * m_[i]);
+    deposit_friction_heat(i, heat);
   }
   tool_force_ = force;
 }
@@ -405,7 +468,6 @@ void SolidSph::penalty_contact(double dt) {
   // positions are x^{n+1}; the tool is at its position of time_ + dt
   const Vec2 tool_pos = tool_pos_ + dt * tool_vel_;
   const double offset = contact_.offset_fraction * dx_;
-  const double c_heat = thermal_ ? th_.heat.specific_heat : 0.0;
   if (friction_history_.size() != x_.size()) friction_history_.assign(x_.size(), Vec2::Zero());
   Vec2 force = Vec2::Zero();
   for (std::size_t i = 0; i < x_.size(); ++i) {
@@ -420,7 +482,7 @@ void SolidSph::penalty_contact(double dt) {
     const Vec2 vrel = v_[i] - tool_vel_;
     const Vec2 vt = vrel - vrel.dot(sd.normal) * sd.normal;
     Vec2 ft = friction_history_[i] - (contact_.alpha * m_[i] / dt) * vt;
-    const double fy = contact_.friction * fn.norm();
+    const double fy = std::min(contact_.friction * fn.norm(), shear_cap(i));
     // Only the plastic (slip) part of the tangential motion dissipates: slip = (|f*| - f_y) / k_t
     // with the tangential stiffness k_t = alpha m / dt^2; the elastic stick part is stored.
     double heat = 0.0;
@@ -433,10 +495,16 @@ void SolidSph::penalty_contact(double dt) {
     friction_history_[i] = ft;
     a_[i] += (fn + ft) / m_[i];
     force -= fn + ft;
-    friction_heat_ += heat;
-    if (thermal_ && !t_fixed_[i]) T_[i] += heat * rho_[i] / (th_.heat.density * c_heat * m_[i]);
+    deposit_friction_heat(i, heat);
   }
   tool_force_ = force;
+}
+
+double SolidSph::yield_floor(double T) const {
+  const auto& jc = mat_.jc;
+  if (!(jc.A > 0.0) || !(jc.B >= 0.0) || !(jc.C >= 0.0)) return 0.0;  // no cheap bound: always return-map
+  const double ts = std::clamp((T - jc.T_ref) / (jc.T_melt - jc.T_ref), 0.0, 1.0);
+  return jc.A * (jc.m <= 1.0 ? jc.m : 1.0) * (1.0 - ts);
 }
 
 Vec2 SolidSph::momentum() const {

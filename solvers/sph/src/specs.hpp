@@ -6,4 +6,5 @@ namespace cutbench::sph::detail {
 SolverSpec laplacian_spec();  // runner_laplacian.cpp
 SolverSpec heat_spec();       // runner_heat.cpp
 SolverSpec cutting_spec();    // runner_cutting.cpp
+SolverSpec cutting_inputs_spec();  // runner_cutting.cpp
 }  // namespace cutbench::sph::detail

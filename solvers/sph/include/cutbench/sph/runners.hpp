@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cutbench/common/solver.hpp"
+#include "cutbench/sph/solid.hpp"
 
 namespace cutbench::sph {
 
@@ -31,7 +32,7 @@ struct CuttingSetup {
   double friction = 0.35;
   double rake = 0.0, clearance = 7.0 * 3.14159265358979323846 / 180.0, edge_radius = 2.8e-6;
   bool enhanced_thermal = true;
-  bool brookshaw_band = false;
+  bool brookshaw_band = true;     // enhanced model: Brookshaw on a 2h surface band (README decision); false: paper
   int fixed_layers = 3;
   bool tool_conduction = true;   // tool particles conduct heat (k 88, c_p 292 from Table 1)
   double tool_density = 15000.0;  // kg/m^3, NOT in the paper (WC-Co assumed)
@@ -41,7 +42,24 @@ struct CuttingSetup {
   int snapshots = 1;              // equally spaced in time, the last at the end of the cut
   bool penalty_contact = true;    // true: penalty + stick-slip friction (default); false: velocity level
   double contact_offset = 0.5;    // contact surface offset in units of dx
+  double tool_conductivity = 88.0;     // W/mK, Table 1
+  double tool_specific_heat = 292.0;   // J/kgK, Table 1
+  double tool_heat_share = -1.0;  // friction heat to the tool; < 0: effusivity partition (ContactOptions)
+  bool shear_cap = false;         // Zorev cap of the friction stress (ContactOptions::shear_cap)
+  double contact_stiffness = 0.1; // penalty alpha (ContactOptions::alpha), a choice (not in the paper)
 };
+
+// The material, thermal and contact inputs run_cutting() builds from a setup (one place, so that
+// the Table 1 case can check what the runner really uses).
+struct CuttingInputs {
+  SolidMaterial material;
+  SolidOptions options;
+  ThermalOptions thermal;
+  ContactOptions contact;
+  HeatMaterial tool_heat;
+  double h_over_dx = 1.5;
+};
+CuttingInputs cutting_inputs(const CuttingSetup& setup);
 
 struct CuttingResult {
   std::vector<double> t, cut, fc, ft;  // windowed means of the force on the tool, N/m
@@ -52,12 +70,26 @@ struct CuttingResult {
   // heat audit (J/m): generated = plastic + friction; stored in workpiece and tool, lost to the air,
   // sunk into the fixed-temperature particles; imbalance = (generated - stored - lost - sunk) / generated
   double stored_workpiece = 0.0, stored_tool = 0.0, heat_lost = 0.0, heat_sunk = 0.0, heat_imbalance = 0.0;
+  double friction_heat_tool = 0.0, tool_share = 0.0;  // friction heat put into the tool, J/m; beta
+  Vec2 T_max_at = Vec2::Zero();  // position of T_max relative to the lowest tool edge point
+  // Chip (uncut-layer material the tool has passed by more than t_u / 2, columns of the initial
+  // lattice, most of whose particles are above the original surface), in cutting order: mean eps_p and centroid of each column. Thickness = chip area / length
+  // of the centroid line; curl = turning angle of that line (first third to last third);
+  // serration: peaks of the column eps_p profile found with hysteresis 0.2 x mean (segments), mean
+  // centroid-line distance between consecutive peaks (pitch), std/mean of the profile (cv).
+  std::vector<double> chip_x0, chip_eps, chip_cx, chip_cy, chip_s;
+  double chip_thickness = 0.0, chip_length = 0.0, chip_curl = 0.0, chip_T_mean = 0.0;
+  double chip_segments = 0.0, serration_pitch = 0.0, serration_cv = 0.0;
   double dx = 0.0;
   std::size_t particles = 0, steps = 0;
   Snapshot snapshot;               // final state: T, eps_p, surface flag
   std::vector<Snapshot> snapshots;  // `snapshots` states, the last one equal to `snapshot`
   Snapshot tool_snapshot;          // final tool particles (world frame) with T
 };
+
+// Peaks of a profile f(s) by hysteresis: a peak counts when f rose by more than rel_threshold x
+// |mean f| from the last minimum and then fell by as much; returns the abscissae of the peaks.
+std::vector<double> serration_peaks(const std::vector<double>& s, const std::vector<double>& f, double rel_threshold);
 
 CuttingResult run_cutting(const CuttingSetup& setup, const ProgressFn& progress = nullptr);
 

@@ -78,6 +78,7 @@ public:
   const std::vector<double>& mass() const { return m_; }
   const std::vector<double>& plastic_strain() const { return eps_p_; }
   std::vector<double>& temperature() { return T_; }
+  const std::vector<double>& temperature() const { return T_; }
   const std::vector<Stress3>& deviator() const { return S_; }
   std::vector<Stress3>& deviator() { return S_; }  // e.g. to impose an initial stress
   std::vector<double> pressure() const;
@@ -94,6 +95,9 @@ public:
   const Vec2& tool_position() const { return tool_pos_; }
   const Vec2& tool_force() const { return tool_force_; }  // on the tool, N per metre of depth, last step
   double friction_heat() const { return friction_heat_; }  // J per metre of depth, accumulated
+  // friction heat put into the tool (share beta, see ContactOptions::tool_heat_share), J/m
+  double friction_heat_to_tool() const { return friction_heat_tool_; }
+  double tool_heat_share() const { return tool_share_; }  // beta in use (0 without tool conduction)
 
   // Discretise the tool for heat conduction (requires set_tool and enable_thermal): particles of
   // spacing dx inside the tool within `depth` of its lowest edge point; those beyond depth - 3 dx
@@ -137,6 +141,11 @@ private:
   std::vector<Vec2> pair_gw_;
   std::vector<double> pair_w_;
   std::vector<std::size_t> mirror_;  // index of the reverse pair (j, i) for every listed pair (i, j)
+  // per-step work buffers (kept to avoid allocation in the time loop)
+  std::vector<Stress3> sig_r2_, s_new_;
+  std::vector<Mat2> art_;
+  std::vector<Vec2> acc_, xsph_;
+  std::vector<double> rho_new_, plastic_dT_;
   std::size_t builds_ = 0;
   double time_ = 0.0;
   std::size_t steps_ = 0;
@@ -148,6 +157,10 @@ private:
   FmfsLaplacian fmfs_;
   double plastic_heat_ = 0.0, heat_lost_ = 0.0, friction_heat_ = 0.0;
   double th_dt_acc_ = 0.0, heat_sunk_ = 0.0;
+  double friction_heat_tool_ = 0.0, tool_share_ = 0.0;
+  std::vector<double> pending_tool_heat_;  // per workpiece particle, J/m, deposited at the next conduction update
+  void deposit_friction_heat(std::size_t i, double heat);
+  double shear_cap(std::size_t i) const;  // Zorev cap of |f_t| for particle i (N/m), infinity when off
   int th_steps_ = 0;
   std::shared_ptr<const ToolGeometry> tool_;
   Vec2 tool_pos_ = Vec2::Zero(), tool_vel_ = Vec2::Zero(), tool_force_ = Vec2::Zero();
@@ -169,6 +182,7 @@ private:
 
   void accelerations();
   void update_neighbours();
+  double yield_floor(double T) const;  // a lower bound of the J-C flow stress at temperature T
 };
 
 }  // namespace cutbench::sph

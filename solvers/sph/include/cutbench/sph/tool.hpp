@@ -66,6 +66,19 @@ struct ContactOptions {
   ContactModel model = ContactModel::velocity;
   double friction = 0.35;   // mu
   double heat_fraction = 1.0;  // eta
+  // Share of the friction heat that goes to the tool (when the tool conducts, set_tool_thermal).
+  // Negative (default): the effusivity partition beta = e_tool / (e_tool + e_work), e = sqrt(k rho c)
+  // -- the split for two bodies in perfect thermal contact that gives both faces the same
+  // temperature rise under a common plane source (Carslaw & Jaeger; Blok's partition for a
+  // stationary source). With Table 1 (and the assumed tool density) beta = 0.82. The tool share is
+  // deposited on the tool particles within the kernel support of the heated workpiece particle,
+  // kernel-weighted, at the next conduction update. Without tool conduction all heat goes to the
+  // workpiece particle.
+  double tool_heat_share = -1.0;
+  // Zorev-type cap of the friction stress by the shear flow stress of the chip: |f_t| <= k(T) l,
+  // k = sigma_y(eps_p, T) / sqrt(3), l = dx (the face length a particle covers). Off by default (the
+  // paper states a constant Coulomb mu).
+  bool shear_cap = false;
   double kappa = 0.5;            // velocity model: push-out rate
   double alpha = 0.1;            // penalty model: stiffness scale
   double offset_fraction = 0.5;  // offset = fraction * dx (particles represent a cell of side dx)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "cutbench/common/errors.hpp"
@@ -56,6 +57,10 @@ LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
 
   const double tol = 1e-8 * t1;
   std::vector<int> contact;
+  if (c.streamline < 0 || c.streamline > 3) throw InputError("streamline", "must be 0, 1, 2 or 3");
+  std::vector<char> on_boundary(m.mesh.nodes.size(), 0);
+  for (const auto& e : boundary_edges(m.mesh))
+    for (int nd : {e.a, e.m, e.b}) on_boundary[static_cast<std::size_t>(nd)] = 1;
   const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));  // rake-face normal, out of the chip
   for (int i = 0; i < m.mesh.num_nodes(); ++i) {
     const Vector2d& x = m.mesh.nodes[static_cast<std::size_t>(i)];
@@ -74,7 +79,17 @@ LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
       continue;
     }
     const double along = x.dot(r), off = x.dot(nr);
-    if (std::abs(off) < tol && along > 0.0 && along <= c.contact_length + tol) contact.push_back(i);
+    if (std::abs(off) < tol && along > 0.0 && along <= c.contact_length + tol) {
+      contact.push_back(i);
+      continue;
+    }
+    if (!on_boundary[static_cast<std::size_t>(i)] || c.streamline == 0) continue;
+    if (std::abs(x.y() - t1) < tol && x.x() < S.x() - tol) {  // uncut top surface: v_y = 0
+      m.sliders.emplace_back(i, Vector2d(0.0, 1.0));
+    } else if (c.streamline >= 2 && std::abs(off - S.dot(nr)) < tol && (x - S).dot(r) > tol &&
+               (c.streamline == 2 || x.dot(r) > c.contact_length + tol)) {  // chip back
+      m.sliders.emplace_back(i, -nr);
+    }
   }
   m.add_contact(contact, c.mu, nr);
   return m;
@@ -125,14 +140,53 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     res.tau.push_back(sol.contact_rt[i] / tl);
     res.slip.push_back(sol.contact_wt[i]);
   }
-  // stick fraction: share of the contact length (by tributary weights) where the node sticks
-  double total = 0.0, stuck = 0.0;
-  for (std::size_t i = 0; i < res.model.contacts.size(); ++i) {
-    const double tl = trib[res.model.contacts[i].node];
+  // stick fraction: share of the contact length (by tributary weights) where the node sticks;
+  // apparent friction per zone from the nodal reactions
+  const double v_chip = std::sin(c.phi) / std::cos(c.phi - c.alpha);
+  double total = 0.0, stuck = 0.0, st_t = 0.0, st_n = 0.0, sl_t = 0.0, sl_n = 0.0, Ft = 0.0, Fn = 0.0;
+  for (const auto& [s, i] : order) {
+    const double tl = trib[res.model.contacts[static_cast<std::size_t>(i)].node];
+    const double rt = sol.contact_rt[i], rn = sol.contact_rn[i];
     total += tl;
-    if (std::abs(sol.contact_wt[static_cast<Eigen::Index>(i)]) < 1e-6) stuck += tl;
+    Ft += rt;
+    Fn += rn;
+    const bool st = std::abs(sol.contact_wt[i]) < c.stick_tol * v_chip;
+    res.stick.push_back(st ? 1 : 0);
+    if (st) {
+      stuck += tl;
+      st_t += std::abs(rt);
+      st_n += std::abs(rn);
+    } else {
+      sl_t += std::abs(rt);
+      sl_n += std::abs(rn);
+    }
   }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   res.stick_fraction = total > 0.0 ? stuck / total : 0.0;
+  res.mu_sticking = st_n > 0.0 ? st_t / st_n : nan;
+  res.mu_sliding = sl_n > 0.0 ? sl_t / sl_n : nan;
+  res.mu_app = std::abs(Fn) > 0.0 ? std::abs(Ft) / std::abs(Fn) : nan;
+  // fluxes through the free surfaces (exact for the quadratic edge velocity: Simpson)
+  {
+    const auto& mesh = res.model.mesh;
+    const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));
+    const Vector2d S(-c.t1 / std::tan(c.phi), c.t1);
+    const Vector2d ns(std::sin(c.phi), std::cos(c.phi));
+    const double tol = 1e-6 * c.t1;
+    for (const auto& e : boundary_edges(mesh)) {
+      const Vector2d n = boundary_normal(mesh, e);
+      const Vector2d& xm = mesh.nodes[static_cast<std::size_t>(e.m)];
+      const double L = (mesh.nodes[static_cast<std::size_t>(e.b)] - mesh.nodes[static_cast<std::size_t>(e.a)]).norm();
+      auto vn = [&](int nd) { return sol.velocity[2 * nd] * n.x() + sol.velocity[2 * nd + 1] * n.y(); };
+      const double f = L * (vn(e.a) + 4.0 * vn(e.m) + vn(e.b)) / 6.0;
+      if (std::abs(xm.y() - c.t1) < tol && xm.x() < S.x()) res.flux_top += f;
+      else if (std::abs(xm.dot(nr) - S.dot(nr)) < tol) res.flux_back += f;
+      else if (std::abs(n.dot(ns) - 1.0) < 1e-9 && xm.dot(r) > c.contact_length) res.flux_end += f;  // end ∥ OS
+    }
+    double rn = 0.0;
+    for (Eigen::Index i = 0; i < sol.slider_rn.size(); ++i) rn += std::abs(sol.slider_rn[i]);
+    res.streamline_force = rn / (c.k * c.t1);
+  }
   return res;
 }
 

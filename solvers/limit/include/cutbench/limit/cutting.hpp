@@ -27,6 +27,13 @@ struct CuttingSetup {
   // μ > 0: true = non-associated Coulomb with w_n = 0 by the fixed point on the pressure
   // (solve_limit_coulomb); false = the coupled (associated) cone |r_t| + μ r_n ≤ 0.
   bool coulomb_fixed_point = true;
+  // Steady-state streamline condition on the free surfaces (v·n = 0, frictionless, normal
+  // reaction free): 0 = none (surfaces traction-free, material may cross them), 1 = the uncut
+  // top surface y = t1 ahead of S, 2 = the top surface and the chip back surface.
+  int streamline = 1;
+  // a contact node sticks when |w_t| < stick_tol · v_chip, v_chip = sin φ / cos(φ − α) the speed
+  // of the rigid chip (the tip node is fixed, so w_t rises continuously from zero)
+  double stick_tol = 1e-3;
 };
 
 struct CuttingResult {
@@ -40,7 +47,17 @@ struct CuttingResult {
   double ff_bar = 0.0;
   // rake-face profile, ordered by s (distance from the tip), lumped nodal values
   std::vector<double> s, sigma_n, tau, slip;
-  double stick_fraction = 0.0;  // fraction of the contact length with |w_t| < 1e-6 (node-wise)
+  double stick_fraction = 0.0;  // fraction of the contact length in stick (|w_t| < stick_tol·v_chip)
+  // apparent friction Σ|r_t| / Σ|r_n| over the stick nodes, the slip nodes, and |F_t|/|F_n| of
+  // the resultants over the whole contact (NaN where a zone is empty)
+  double mu_sticking = 0.0, mu_sliding = 0.0, mu_app = 0.0;
+  std::vector<char> stick;  // per profile point (ordered by s)
+  // volume fluxes (per unit width, unit inflow speed → t1 in total) leaving through the uncut
+  // top surface, the chip back and the chip end; steady state needs top = back = 0
+  double flux_top = 0.0, flux_back = 0.0, flux_end = 0.0;
+  // resultant normal force on the streamline (slider) surfaces, |Σ r_n| / (k t1): how far the
+  // imposed geometry is from a traction-free steady state (0 when streamline = 0); Σ|r_n|/(k t1)
+  double streamline_force = 0.0;
 };
 
 double chip_thickness(double t1, double phi, double alpha);  // Eq. 2

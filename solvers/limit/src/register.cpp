@@ -379,11 +379,11 @@ SolverSpec cutting_spec() {
       hist.name = "steady_state";
       std::vector<double> pd, psd;
       for (std::size_t i = 0; i < loop_phi.size(); ++i) {
-        pd.push_back(loop_phi[i] * 180.0 / kPi);
-        psd.push_back(loop_phi_star[i] * 180.0 / kPi);
+        pd.push_back(loop_phi[i]);
+        psd.push_back(loop_phi_star[i]);
       }
-      hist.add("phi", "deg", pd);
-      hist.add("phi_star", "deg", psd);
+      hist.add("phi", "rad", pd);
+      hist.add("phi_star", "rad", psd);
       hist.add("fc_bar", "1", loop_fc);
       out.tables.push_back(std::move(hist));
     }

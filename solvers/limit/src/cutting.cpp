@@ -104,7 +104,10 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
   res.model = std::move(model);
   res.t2 = chip_thickness(c.t1, c.phi, c.alpha);
   if (c.mu > 0.0 && c.coulomb_fixed_point) {
-    res.solution = solve_limit_coulomb(res.model, settings, {}, &res.coulomb);
+    CoulombOptions co;
+    co.relaxation = c.coulomb_relaxation;
+    co.max_iter = c.coulomb_max_iter;
+    res.solution = solve_limit_coulomb(res.model, settings, co, &res.coulomb);
   } else {
     res.solution = solve_limit(res.model, settings);
   }

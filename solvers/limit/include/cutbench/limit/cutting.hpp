@@ -27,6 +27,10 @@ struct CuttingSetup {
   // μ > 0: true = non-associated Coulomb with w_n = 0 by the fixed point on the pressure
   // (solve_limit_coulomb); false = the coupled (associated) cone |r_t| + μ r_n ≤ 0.
   bool coulomb_fixed_point = true;
+  // under-relaxation p ← ω p_new + (1 − ω) p of the pressure fixed point: with ω = 1 it oscillates
+  // for μ ≥ 1 on the restricted tool (F̄c 2.60–2.67 for 30 steps at μ = 1, n = 6); ω = 0.5 converges
+  double coulomb_relaxation = 0.5;
+  int coulomb_max_iter = 40;
   // Steady-state streamline condition on the free surfaces (v·n = 0, frictionless, normal
   // reaction free): 0 = none (surfaces traction-free, material may cross them), 1 = the uncut
   // top surface y = t1 ahead of S, 2 = the top surface and the chip back surface.

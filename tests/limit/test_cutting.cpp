@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "cutbench/common/errors.hpp"
 #include "cutbench/limit/cutting.hpp"
 
 using namespace cutbench::limit;
@@ -117,8 +118,25 @@ BOOST_AUTO_TEST_CASE(frictional_chip_escapes_through_free_surface) {
                                                << held.flux_end << " stick " << held.stick_fraction);
   BOOST_TEST(std::abs(held.flux_top) < 0.02);
   BOOST_TEST(held.flux_end > 0.97);
-  BOOST_TEST(std::abs(held.flux_top + held.flux_back + held.flux_end - 1.0) < 1e-6);  // incompressible
+  BOOST_TEST(std::abs(held.flux_top + held.flux_back + held.flux_end + held.flux_rake_free - 1.0) < 1e-6);  // incompressible
   BOOST_TEST(held.fc_bar > free.fc_bar + 0.2);
+}
+
+BOOST_AUTO_TEST_CASE(natural_separation_point) {
+  // Contact over 4 t1: after the coupled first step the Coulomb steps (|r_t| ≤ μ p_k, r_n ≤ 0)
+  // let the chip separate where the pressure vanishes (the fixed point also runs at μ = 0 here).
+  // Frictionless, α = 0, φ = 45°, n = 4: l_sep = 1.0 t1 (the incremental search with permanent
+  // contact gives 1.23; the paper: of the order of t1/cos α without friction); beyond l_sep σ_n ≈ 0.
+  CuttingSetup c;
+  c.n = 4;
+  const auto nat = natural_contact_length(c, 4.0, 0.1);
+  BOOST_TEST_MESSAGE("frictionless natural separation l = " << nat.contact_length);
+  BOOST_TEST(nat.contact_length > 0.9);
+  BOOST_TEST(nat.contact_length < 1.4);
+  const auto& r = nat.long_contact;
+  for (std::size_t i = 0; i < r.s.size(); ++i)
+    if (r.s[i] > nat.contact_length + 1e-12) BOOST_TEST(r.sigma_n[i] >= -0.1);
+  BOOST_CHECK_THROW(natural_contact_length(c, -1.0), cutbench::InputError);
 }
 
 BOOST_AUTO_TEST_CASE(frictional_chip_against_merchant) {

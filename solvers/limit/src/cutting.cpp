@@ -103,7 +103,7 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
   CuttingResult res;
   res.model = std::move(model);
   res.t2 = chip_thickness(c.t1, c.phi, c.alpha);
-  if (c.mu > 0.0 && c.coulomb_fixed_point) {
+  if ((c.mu > 0.0 || c.unilateral) && c.coulomb_fixed_point) {
     CoulombOptions co;
     co.relaxation = c.coulomb_relaxation;
     co.max_iter = c.coulomb_max_iter;
@@ -185,6 +185,7 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
       if (std::abs(xm.y() - c.t1) < tol && xm.x() < S.x()) res.flux_top += f;
       else if (std::abs(xm.dot(nr) - S.dot(nr)) < tol) res.flux_back += f;
       else if (std::abs(n.dot(ns) - 1.0) < 1e-9 && xm.dot(r) > c.contact_length) res.flux_end += f;  // end ∥ OS
+      else if (std::abs(xm.dot(nr)) < tol && xm.dot(r) > c.contact_length) res.flux_rake_free += f;
     }
     double rn = 0.0;
     for (Eigen::Index i = 0; i < sol.slider_rn.size(); ++i) rn += std::abs(sol.slider_rn[i]);
@@ -257,6 +258,22 @@ ContactLengthResult search_contact_length(CuttingSetup c, const ContactLengthOpt
   }
   out.contact_length = hi;
   out.final = std::move(r_hi);
+  return out;
+}
+
+NaturalContactResult natural_contact_length(CuttingSetup c, double max_length, double tol, const SocpSettings& settings) {
+  if (!(max_length > 0.0)) throw InputError("max_length", "must be positive (in t1)");
+  if (!(tol > 0.0)) throw InputError("tol", "must be positive (in k)");
+  NaturalContactResult out;
+  c.contact_length = max_length * c.t1;
+  c.unilateral = true;
+  out.long_contact = solve_cutting(c, settings);
+  const auto& r = out.long_contact;
+  double l = 0.0;
+  for (std::size_t i = 0; i < r.s.size(); ++i)
+    if (r.sigma_n[i] < -tol * c.k) l = r.s[i];
+  if (!(l > 0.0)) throw NumericalError("natural_contact_length: no compressed contact node");
+  out.contact_length = l;
   return out;
 }
 

@@ -229,7 +229,7 @@ SolverSpec cutting_spec() {
               phi, l, p_int("n", "mesh density (cells across t1)", 8, 2, 64),
               p_int("coulomb_fixed_point", "1: non-associated Coulomb (fixed point on the pressure), 0: coupled cone", 1, 0, 1),
               p_int("streamline", "free surfaces held as streamlines (v.n = 0): 0 none, 1 uncut top, 2 top + chip back, 3 top + chip back beyond l", 1, 0, 3),
-              p_int("contact_search", "1: unrestricted tool, search l from t1/cos(alpha) until sigma_n -> 0 at the separation point", 0, 0, 1),
+              p_int("contact_search", "unrestricted tool: 1 = grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact; 2 = natural separation (contact over 4 t1 where the Coulomb steps let nodes separate, l = last node with sigma_n < -0.1 k), then re-solved with permanent contact over l", 0, 0, 2),
               p_int("steady_state", "1: steady-state loop of Fig. 4 (phi <- min(phi*, phi_M)) around the solve (or the search)", 0, 0, 1),
               p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3)};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
@@ -248,6 +248,7 @@ SolverSpec cutting_spec() {
                {"flux_top", Dim::dimensionless, "volume flux out of the uncut top surface / (v t1)"},
                {"flux_back", Dim::dimensionless, "volume flux out of the chip back / (v t1)"},
                {"flux_end", Dim::dimensionless, "volume flux out of the chip end / (v t1)"},
+               {"flux_rake_free", Dim::dimensionless, "volume flux out of the free rake face beyond l / (v t1) (< 0: into the tool)"},
                {"streamline_force", Dim::dimensionless, "sum |normal reaction| on the streamline surfaces / (k t1 w)"},
                {"max_sigma_eq_over_k", Dim::dimensionless, "max sqrt(J2)/k over all stress points"},
                {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},
@@ -270,7 +271,8 @@ SolverSpec cutting_spec() {
     c.coulomb_fixed_point = as_int(v, "coulomb_fixed_point") == 1;
     c.streamline = as_int(v, "streamline");
     c.stick_tol = v.at("stick_tol");
-    const bool search = as_int(v, "contact_search") == 1, loop = as_int(v, "steady_state") == 1;
+    const int search_mode = as_int(v, "contact_search");
+    const bool search = search_mode > 0, loop = as_int(v, "steady_state") == 1;
     if (progress) progress(0.0, "solving");
     const auto t0 = std::chrono::steady_clock::now();
     int solves = 0;
@@ -278,6 +280,13 @@ SolverSpec cutting_spec() {
     auto solve_once = [&](CuttingSetup cs) {
       if (!search) {
         ++solves;
+        return solve_cutting(cs);
+      }
+      if (search_mode == 2) {
+        const auto nat = natural_contact_length(cs);
+        solves += 2;
+        cs.contact_length = nat.contact_length;
+        c.contact_length = nat.contact_length;
         return solve_cutting(cs);
       }
       auto res = search_contact_length(cs);
@@ -331,6 +340,7 @@ SolverSpec cutting_spec() {
     put("flux_top", r.flux_top, "1");
     put("flux_back", r.flux_back, "1");
     put("flux_end", r.flux_end, "1");
+    put("flux_rake_free", r.flux_rake_free, "1");
     put("streamline_force", r.streamline_force, "1");
     put("solves", solves, "1");
     {

@@ -30,6 +30,9 @@ struct CuttingSetup {
   // under-relaxation p ← ω p_new + (1 − ω) p of the pressure fixed point: with ω = 1 it oscillates
   // for μ ≥ 1 on the restricted tool (F̄c 2.60–2.67 for 30 steps at μ = 1, n = 6); ω = 0.5 converges
   double coulomb_relaxation = 0.5;
+  // also run the pressure fixed point at μ = 0, so that the rake contact is unilateral (r_n ≤ 0,
+  // separation allowed) after the first step; set by natural_contact_length()
+  bool unilateral = false;
   int coulomb_max_iter = 40;
   // Steady-state streamline condition on the free surfaces (v·n = 0, frictionless, normal
   // reaction free): 0 = none (surfaces traction-free, material may cross them), 1 = the uncut
@@ -59,6 +62,7 @@ struct CuttingResult {
   // volume fluxes (per unit width, unit inflow speed → t1 in total) leaving through the uncut
   // top surface, the chip back and the chip end; steady state needs top = back = 0
   double flux_top = 0.0, flux_back = 0.0, flux_end = 0.0;
+  double flux_rake_free = 0.0;  // through the rake face beyond l (< 0: the chip moves into the tool there)
   // resultant normal force on the streamline (slider) surfaces, |Σ r_n| / (k t1): how far the
   // imposed geometry is from a traction-free steady state (0 when streamline = 0); Σ|r_n|/(k t1)
   double streamline_force = 0.0;
@@ -112,6 +116,16 @@ struct ContactLengthResult {
 };
 ContactLengthResult search_contact_length(CuttingSetup setup, const ContactLengthOptions& opt = {},
                                           const SocpSettings& settings = {});
+// Contact length from the natural separation point: the rake face is put in contact over a long
+// length (max_length·t1); after the first (coupled) step of the pressure fixed point the rows
+// |r_t| ≤ μ p_k, r_n ≤ 0 let nodes separate (w_n away from the tool) where the pressure vanishes.
+// l_sep is the position of the last contact node with σ_n < −tol·k (lumped nodal values).
+struct NaturalContactResult {
+  double contact_length = 0.0;  // l_sep
+  CuttingResult long_contact;   // the solve over max_length
+};
+NaturalContactResult natural_contact_length(CuttingSetup setup, double max_length = 4.0, double tol = 0.1,
+                                            const SocpSettings& settings = {});
 CuttingResult solve_cutting(const CuttingSetup& setup, const SocpSettings& settings = {});
 CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& setup, const SocpSettings& settings = {});
 

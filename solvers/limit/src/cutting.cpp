@@ -95,6 +95,42 @@ LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
   return m;
 }
 
+void contact_statistics(CuttingResult& res, double l_max) {
+  // stick fraction: share of the contact length (by tributary weights) where the node sticks;
+  // apparent friction per zone from the nodal reactions (lumped stress × tributary length)
+  double total = 0.0, stuck = 0.0, st_t = 0.0, st_n = 0.0, sl_t = 0.0, sl_n = 0.0, Ft = 0.0, Fn = 0.0;
+  res.stick.assign(res.s.size(), 0);
+  for (std::size_t i = 0; i < res.s.size(); ++i) {
+    if (res.s[i] > l_max * (1.0 + 1e-12)) continue;
+    const double tl = res.trib[i], rt = res.tau[i] * tl, rn = res.sigma_n[i] * tl;
+    total += tl;
+    Ft += rt;
+    Fn += rn;
+    const bool st = std::abs(res.slip[i]) < res.stick_tol * res.v_chip;
+    res.stick[i] = st ? 1 : 0;
+    if (st) {
+      stuck += tl;
+      st_t += std::abs(rt);
+      st_n += std::abs(rn);
+    } else {
+      sl_t += std::abs(rt);
+      sl_n += std::abs(rn);
+    }
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  res.stick_fraction = total > 0.0 ? stuck / total : 0.0;
+  res.mu_sticking = st_n > 0.0 ? st_t / st_n : nan;
+  res.mu_sliding = sl_n > 0.0 ? sl_t / sl_n : nan;
+  res.mu_app = std::abs(Fn) > 0.0 ? std::abs(Ft) / std::abs(Fn) : nan;
+}
+
+void truncate_contact(CuttingResult& res, double l_max) {
+  std::size_t keep = 0;
+  while (keep < res.s.size() && res.s[keep] <= l_max * (1.0 + 1e-12)) ++keep;
+  for (auto* v : {&res.s, &res.sigma_n, &res.tau, &res.slip, &res.trib}) v->resize(keep);
+  contact_statistics(res, l_max);
+}
+
 CuttingResult solve_cutting(const CuttingSetup& c, const SocpSettings& settings) {
   return solve_cutting_on(cutting_model(c), c, settings);
 }
@@ -142,33 +178,11 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     res.sigma_n.push_back(sol.contact_rn[i] / tl);
     res.tau.push_back(sol.contact_rt[i] / tl);
     res.slip.push_back(sol.contact_wt[i]);
+    res.trib.push_back(tl);
   }
-  // stick fraction: share of the contact length (by tributary weights) where the node sticks;
-  // apparent friction per zone from the nodal reactions
-  const double v_chip = std::sin(c.phi) / std::cos(c.phi - c.alpha);
-  double total = 0.0, stuck = 0.0, st_t = 0.0, st_n = 0.0, sl_t = 0.0, sl_n = 0.0, Ft = 0.0, Fn = 0.0;
-  for (const auto& [s, i] : order) {
-    const double tl = trib[res.model.contacts[static_cast<std::size_t>(i)].node];
-    const double rt = sol.contact_rt[i], rn = sol.contact_rn[i];
-    total += tl;
-    Ft += rt;
-    Fn += rn;
-    const bool st = std::abs(sol.contact_wt[i]) < c.stick_tol * v_chip;
-    res.stick.push_back(st ? 1 : 0);
-    if (st) {
-      stuck += tl;
-      st_t += std::abs(rt);
-      st_n += std::abs(rn);
-    } else {
-      sl_t += std::abs(rt);
-      sl_n += std::abs(rn);
-    }
-  }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  res.stick_fraction = total > 0.0 ? stuck / total : 0.0;
-  res.mu_sticking = st_n > 0.0 ? st_t / st_n : nan;
-  res.mu_sliding = sl_n > 0.0 ? sl_t / sl_n : nan;
-  res.mu_app = std::abs(Fn) > 0.0 ? std::abs(Ft) / std::abs(Fn) : nan;
+  res.v_chip = std::sin(c.phi) / std::cos(c.phi - c.alpha);
+  res.stick_tol = c.stick_tol;
+  contact_statistics(res, std::numeric_limits<double>::infinity());
   // fluxes through the free surfaces (exact for the quadratic edge velocity: Simpson)
   {
     const auto& mesh = res.model.mesh;

@@ -229,7 +229,7 @@ SolverSpec cutting_spec() {
               phi, l, p_int("n", "mesh density (cells across t1)", 8, 2, 64),
               p_int("coulomb_fixed_point", "1: non-associated Coulomb (fixed point on the pressure), 0: coupled cone", 1, 0, 1),
               p_int("streamline", "free surfaces held as streamlines (v.n = 0): 0 none, 1 uncut top, 2 top + chip back, 3 top + chip back beyond l", 1, 0, 3),
-              p_int("contact_search", "unrestricted tool: 1 = grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact; 2 = natural separation (contact over 4 t1 where the Coulomb steps let nodes separate, l = last node with sigma_n < -0.1 k), then re-solved with permanent contact over l", 0, 0, 2),
+              p_int("contact_search", "unrestricted tool: 1 = grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact; 2 = natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)", 0, 0, 2),
               p_int("steady_state", "1: steady-state loop of Fig. 4 (phi <- min(phi*, phi_M)) around the solve (or the search)", 0, 0, 1),
               p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3)};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
@@ -282,12 +282,12 @@ SolverSpec cutting_spec() {
         ++solves;
         return solve_cutting(cs);
       }
-      if (search_mode == 2) {
-        const auto nat = natural_contact_length(cs);
-        solves += 2;
-        cs.contact_length = nat.contact_length;
+      if (search_mode == 2) {  // the long unilateral-contact solution, profile cut at l_sep
+        auto nat = natural_contact_length(cs);
+        ++solves;
         c.contact_length = nat.contact_length;
-        return solve_cutting(cs);
+        truncate_contact(nat.long_contact, nat.contact_length);
+        return std::move(nat.long_contact);
       }
       auto res = search_contact_length(cs);
       solves += static_cast<int>(res.lengths.size());

@@ -59,6 +59,8 @@ struct CuttingResult {
   // the resultants over the whole contact (NaN where a zone is empty)
   double mu_sticking = 0.0, mu_sliding = 0.0, mu_app = 0.0;
   std::vector<char> stick;  // per profile point (ordered by s)
+  std::vector<double> trib;  // tributary length of each profile point
+  double v_chip = 1.0, stick_tol = 1e-3;
   // volume fluxes (per unit width, unit inflow speed → t1 in total) leaving through the uncut
   // top surface, the chip back and the chip end; steady state needs top = back = 0
   double flux_top = 0.0, flux_back = 0.0, flux_end = 0.0;
@@ -126,6 +128,10 @@ struct NaturalContactResult {
 };
 NaturalContactResult natural_contact_length(CuttingSetup setup, double max_length = 4.0, double tol = 0.1,
                                             const SocpSettings& settings = {});
+// Recompute stick fraction and apparent friction from the profile, over s ≤ l_max.
+void contact_statistics(CuttingResult& r, double l_max);
+// Keep the profile points with s ≤ l_max only and recompute the statistics over them.
+void truncate_contact(CuttingResult& r, double l_max);
 CuttingResult solve_cutting(const CuttingSetup& setup, const SocpSettings& settings = {});
 CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& setup, const SocpSettings& settings = {});
 

@@ -199,7 +199,7 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
       if (std::abs(xm.y() - c.t1) < tol && xm.x() < S.x()) res.flux_top += f;
       else if (std::abs(xm.dot(nr) - S.dot(nr)) < tol) res.flux_back += f;
       else if (std::abs(n.dot(ns) - 1.0) < 1e-9 && xm.dot(r) > c.contact_length) res.flux_end += f;  // end ∥ OS
-      else if (std::abs(xm.dot(nr)) < tol && xm.dot(r) > c.contact_length) res.flux_rake_free += f;
+      else if (std::abs(xm.dot(nr)) < tol && xm.dot(r) > 0.0) res.flux_rake_free += f;  // separation or free part
     }
     double rn = 0.0;
     for (Eigen::Index i = 0; i < sol.slider_rn.size(); ++i) rn += std::abs(sol.slider_rn[i]);

@@ -203,6 +203,7 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
   std::vector<Trip> tg;
   std::vector<double> hvec;
   int m = 0;
+  std::vector<int> rn_row(static_cast<std::size_t>(nc), -1);
   for (int c = 0; c < nc; ++c) {
     const auto& cn = model.contacts[static_cast<std::size_t>(c)];
     const int dx = 2 * cn.node, dy = dx + 1;
@@ -214,7 +215,9 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
         hvec.push_back(std::max(cn.tresca_bound, 0.0));
         ++m;
       }
-      // r_n ≤ 0: the contact transmits compression only (Eq. 5)
+      // r_n ≤ 0: the contact transmits compression only (Eq. 5); its multiplier z ≥ 0 is the
+      // separation velocity (v·n = −z, away from the rigid body)
+      rn_row[static_cast<std::size_t>(c)] = m;
       add_row(tg, m, dx, cn.normal.x());
       add_row(tg, m, dy, cn.normal.y());
       if (load_mode && Fn != 0.0) tg.emplace_back(m, ilam, -Fn);
@@ -292,8 +295,9 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
     const auto& cn = model.contacts[static_cast<std::size_t>(c)];
     const Vector2d tt(-cn.normal.y(), cn.normal.x());
     const double wt = -r.y[row_of_contact[static_cast<std::size_t>(c)]];
-    sol.velocity[2 * cn.node] = wt * tt.x();
-    sol.velocity[2 * cn.node + 1] = wt * tt.y();
+    const double wn = rn_row[static_cast<std::size_t>(c)] >= 0 ? -r.z[rn_row[static_cast<std::size_t>(c)]] : 0.0;
+    sol.velocity[2 * cn.node] = wt * tt.x() + wn * cn.normal.x();
+    sol.velocity[2 * cn.node + 1] = wt * tt.y() + wn * cn.normal.y();
     sol.contact_wt[c] = wt;
     sol.contact_rt[c] = r.x[nsig + c];
     sol.contact_rn[c] = cn.normal.x() * fint[2 * cn.node] + cn.normal.y() * fint[2 * cn.node + 1];

@@ -248,7 +248,7 @@ SolverSpec cutting_spec() {
                {"flux_top", Dim::dimensionless, "volume flux out of the uncut top surface / (v t1)"},
                {"flux_back", Dim::dimensionless, "volume flux out of the chip back / (v t1)"},
                {"flux_end", Dim::dimensionless, "volume flux out of the chip end / (v t1)"},
-               {"flux_rake_free", Dim::dimensionless, "volume flux out of the free rake face beyond l / (v t1) (< 0: into the tool)"},
+               {"flux_rake_free", Dim::dimensionless, "volume flux out of the rake-face line / (v t1): free part beyond l (< 0: into the tool) and separating contact nodes"},
                {"streamline_force", Dim::dimensionless, "sum |normal reaction| on the streamline surfaces / (k t1 w)"},
                {"max_sigma_eq_over_k", Dim::dimensionless, "max sqrt(J2)/k over all stress points"},
                {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},

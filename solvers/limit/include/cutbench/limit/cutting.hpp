@@ -64,7 +64,9 @@ struct CuttingResult {
   // volume fluxes (per unit width, unit inflow speed → t1 in total) leaving through the uncut
   // top surface, the chip back and the chip end; steady state needs top = back = 0
   double flux_top = 0.0, flux_back = 0.0, flux_end = 0.0;
-  double flux_rake_free = 0.0;  // through the rake face beyond l (< 0: the chip moves into the tool there)
+  // through the rake-face line: the free part beyond l (< 0: the chip moves into the tool there)
+  // and, with the unilateral contact, the separating nodes (v·n = −z < 0: the chip lifts off)
+  double flux_rake_free = 0.0;
   // resultant normal force on the streamline (slider) surfaces, |Σ r_n| / (k t1): how far the
   // imposed geometry is from a traction-free steady state (0 when streamline = 0); Σ|r_n|/(k t1)
   double streamline_force = 0.0;

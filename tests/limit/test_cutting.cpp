@@ -139,6 +139,27 @@ BOOST_AUTO_TEST_CASE(natural_separation_point) {
   BOOST_CHECK_THROW(natural_contact_length(c, -1.0), cutbench::InputError);
 }
 
+BOOST_AUTO_TEST_CASE(frictional_chip_adaptive) {
+  // Dissipation-driven refinement with the full contact model (Coulomb fixed point, top
+  // streamline). α = 6°, μ = 0.2, φ_M, l = 1.5 t1 from n = 4 (144 elements): 2.2349, 2.2396,
+  // 2.2228, 2.2211 (215 el.), then 2.2179, 2.2485, 2.2198 (398 el.): isotropic bisection converges
+  // slowly and not monotonically toward Merchant (2.1945); uniform n = 8 gives 2.2000.
+  CuttingSetup c;
+  c.alpha = 6.0 * M_PI / 180;
+  c.mu = 0.2;
+  c.phi = merchant_shear_angle(c.alpha, c.mu);
+  c.contact_length = 1.5;
+  c.n = 4;
+  std::vector<CuttingAdaptStep> hist;
+  const auto r = adapt_cutting(c, 3, 0.5, &hist);
+  for (const auto& h : hist) BOOST_TEST_MESSAGE("adaptive frictional chip: elements " << h.elements << " Fc_bar " << h.fc_bar);
+  BOOST_TEST(hist.size() == 4u);
+  BOOST_TEST(hist.back().elements > hist.front().elements);
+  BOOST_TEST(std::abs(r.fc_bar / merchant_force_bar(c.phi, c.alpha, c.mu) - 1.0) < 0.015);
+  BOOST_TEST(r.fc_bar < hist.front().fc_bar);
+  BOOST_CHECK_THROW(adapt_cutting(c, -1), cutbench::InputError);
+}
+
 BOOST_AUTO_TEST_CASE(frictional_chip_against_merchant) {
   // Sliding single-shear-plane chip at φ = φ_M with the uncut top surface a streamline: the
   // rigid-block mechanism with Coulomb sliding (equilibrium of the chip, force at β from the rake

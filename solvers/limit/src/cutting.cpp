@@ -208,6 +208,35 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
   return res;
 }
 
+CuttingResult adapt_cutting(const CuttingSetup& c, int steps, double fraction, std::vector<CuttingAdaptStep>* history,
+                            const SocpSettings& settings) {
+  if (steps < 0) throw InputError("adapt_steps", "must be >= 0");
+  if (!(fraction > 0.0 && fraction <= 1.0)) throw InputError("fraction", "must be in (0, 1]");
+  Mesh mesh = cutting_model(c).mesh;
+  for (int step = 0;; ++step) {
+    CuttingResult r = solve_cutting_on(cutting_model_on_mesh(mesh, c), c, settings);
+    if (history) history->push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.mu_sticking});
+    if (step == steps) return r;
+    const int ne = mesh.num_elements();
+    std::vector<std::pair<double, int>> d(static_cast<std::size_t>(ne));
+    double total = 0.0;
+    for (int e = 0; e < ne; ++e) {
+      const double de = r.solution.point_dissipation.segment(3 * e, 3).sum();
+      d[static_cast<std::size_t>(e)] = {de, e};
+      total += de;
+    }
+    std::sort(d.begin(), d.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<int> marked;
+    double acc = 0.0;
+    for (const auto& [de, e] : d) {
+      if (acc >= fraction * total) break;
+      marked.push_back(e);
+      acc += de;
+    }
+    mesh = refine(mesh, marked);
+  }
+}
+
 double end_normal_stress(const CuttingResult& r, double contact_length, double fraction) {
   // tributary-weighted mean of σ_n over s ≥ (1 − fraction) l (lumped nodal values)
   double num = 0.0, den = 0.0;

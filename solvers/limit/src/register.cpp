@@ -231,7 +231,8 @@ SolverSpec cutting_spec() {
               p_int("streamline", "free surfaces held as streamlines (v.n = 0): 0 none, 1 uncut top, 2 top + chip back, 3 top + chip back beyond l", 1, 0, 3),
               p_int("contact_search", "unrestricted tool: 1 = grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact; 2 = natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)", 0, 0, 2),
               p_int("steady_state", "1: steady-state loop of Fig. 4 (phi <- min(phi*, phi_M)) around the solve (or the search)", 0, 0, 1),
-              p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3)};
+              p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3),
+              p_int("adapt_steps", "dissipation-driven isotropic refinement steps (Doerfler 50%); fixed geometry only", 0, 0, 10)};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
                {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
                {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},
@@ -273,13 +274,17 @@ SolverSpec cutting_spec() {
     c.stick_tol = v.at("stick_tol");
     const int search_mode = as_int(v, "contact_search");
     const bool search = search_mode > 0, loop = as_int(v, "steady_state") == 1;
+    if (as_int(v, "adapt_steps") > 0 && (search || loop))
+      throw InputError("adapt_steps", "adaptive refinement is only available with a fixed geometry (contact_search = 0, steady_state = 0)");
     if (progress) progress(0.0, "solving");
     const auto t0 = std::chrono::steady_clock::now();
     int solves = 0;
     std::vector<double> loop_phi, loop_phi_star, loop_fc;
     auto solve_once = [&](CuttingSetup cs) {
       if (!search) {
-        ++solves;
+        const int steps = as_int(v, "adapt_steps");
+        solves += steps + 1;
+        if (steps > 0) return adapt_cutting(cs, steps, 0.5);
         return solve_cutting(cs);
       }
       if (search_mode == 2) {  // the long unilateral-contact solution, profile cut at l_sep

@@ -135,6 +135,15 @@ void contact_statistics(CuttingResult& r, double l_max);
 // Keep the profile points with s ≤ l_max only and recompute the statistics over them.
 void truncate_contact(CuttingResult& r, double l_max);
 CuttingResult solve_cutting(const CuttingSetup& setup, const SocpSettings& settings = {});
+// Dissipation-driven isotropic refinement of the cutting mesh with the full contact model (pressure
+// fixed point, streamlines): solve, mark the elements carrying `fraction` of the plastic dissipation
+// (Dörfler), bisect (conforming longest-edge), rebuild the boundary conditions, `steps` times.
+struct CuttingAdaptStep {
+  int elements = 0;
+  double fc_bar = 0.0, stick_fraction = 0.0, mu_sticking = 0.0;
+};
+CuttingResult adapt_cutting(const CuttingSetup& setup, int steps, double fraction = 0.5,
+                            std::vector<CuttingAdaptStep>* history = nullptr, const SocpSettings& settings = {});
 CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& setup, const SocpSettings& settings = {});
 
 }  // namespace cutbench::limit

@@ -26,7 +26,12 @@ ParamSpec p_int(const std::string& name, const std::string& desc, double def, do
   return param(name, Dim::dimensionless, desc, def, lo, hi);
 }
 
-Values validated(const SolverSpec& spec, const Values& given) {
+Values validated(const SolverSpec& spec, const Values& given_in) {
+  // NaN is the "not given" sentinel of phi and contact_length (computed defaults); callers that
+  // validate first (framework, `cutbench bench`) pass the NaN default back in, so drop it here
+  Values given;
+  for (const auto& [k, v] : given_in)
+    if (!std::isnan(v)) given[k] = v;
   ModelSpec tmp;
   tmp.name = spec.name;
   tmp.params = spec.params;

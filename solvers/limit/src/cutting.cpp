@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "cutbench/common/errors.hpp"
@@ -56,6 +57,10 @@ LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
 
   const double tol = 1e-8 * t1;
   std::vector<int> contact;
+  if (c.streamline < 0 || c.streamline > 3) throw InputError("streamline", "must be 0, 1, 2 or 3");
+  std::vector<char> on_boundary(m.mesh.nodes.size(), 0);
+  for (const auto& e : boundary_edges(m.mesh))
+    for (int nd : {e.a, e.m, e.b}) on_boundary[static_cast<std::size_t>(nd)] = 1;
   const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));  // rake-face normal, out of the chip
   for (int i = 0; i < m.mesh.num_nodes(); ++i) {
     const Vector2d& x = m.mesh.nodes[static_cast<std::size_t>(i)];
@@ -74,10 +79,56 @@ LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
       continue;
     }
     const double along = x.dot(r), off = x.dot(nr);
-    if (std::abs(off) < tol && along > 0.0 && along <= c.contact_length + tol) contact.push_back(i);
+    if (std::abs(off) < tol && along > 0.0 && along <= c.contact_length + tol) {
+      contact.push_back(i);
+      continue;
+    }
+    if (!on_boundary[static_cast<std::size_t>(i)] || c.streamline == 0) continue;
+    if (std::abs(x.y() - t1) < tol && x.x() < S.x() - tol) {  // uncut top surface: v_y = 0
+      m.sliders.emplace_back(i, Vector2d(0.0, 1.0));
+    } else if (c.streamline >= 2 && std::abs(off - S.dot(nr)) < tol && (x - S).dot(r) > tol &&
+               (c.streamline == 2 || x.dot(r) > c.contact_length + tol)) {  // chip back
+      m.sliders.emplace_back(i, -nr);
+    }
   }
   m.add_contact(contact, c.mu, nr);
   return m;
+}
+
+void contact_statistics(CuttingResult& res, double l_max) {
+  // stick fraction: share of the contact length (by tributary weights) where the node sticks;
+  // apparent friction per zone from the nodal reactions (lumped stress × tributary length)
+  double total = 0.0, stuck = 0.0, st_t = 0.0, st_n = 0.0, sl_t = 0.0, sl_n = 0.0, Ft = 0.0, Fn = 0.0;
+  res.stick.assign(res.s.size(), 0);
+  for (std::size_t i = 0; i < res.s.size(); ++i) {
+    if (res.s[i] > l_max * (1.0 + 1e-12)) continue;
+    const double tl = res.trib[i], rt = res.tau[i] * tl, rn = res.sigma_n[i] * tl;
+    total += tl;
+    Ft += rt;
+    Fn += rn;
+    const bool st = std::abs(res.slip[i]) < res.stick_tol * res.v_chip;
+    res.stick[i] = st ? 1 : 0;
+    if (st) {
+      stuck += tl;
+      st_t += std::abs(rt);
+      st_n += std::abs(rn);
+    } else {
+      sl_t += std::abs(rt);
+      sl_n += std::abs(rn);
+    }
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  res.stick_fraction = total > 0.0 ? stuck / total : 0.0;
+  res.mu_sticking = st_n > 0.0 ? st_t / st_n : nan;
+  res.mu_sliding = sl_n > 0.0 ? sl_t / sl_n : nan;
+  res.mu_app = std::abs(Fn) > 0.0 ? std::abs(Ft) / std::abs(Fn) : nan;
+}
+
+void truncate_contact(CuttingResult& res, double l_max) {
+  std::size_t keep = 0;
+  while (keep < res.s.size() && res.s[keep] <= l_max * (1.0 + 1e-12)) ++keep;
+  for (auto* v : {&res.s, &res.sigma_n, &res.tau, &res.slip, &res.trib}) v->resize(keep);
+  contact_statistics(res, l_max);
 }
 
 CuttingResult solve_cutting(const CuttingSetup& c, const SocpSettings& settings) {
@@ -88,8 +139,11 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
   CuttingResult res;
   res.model = std::move(model);
   res.t2 = chip_thickness(c.t1, c.phi, c.alpha);
-  if (c.mu > 0.0 && c.coulomb_fixed_point) {
-    res.solution = solve_limit_coulomb(res.model, settings, {}, &res.coulomb);
+  if ((c.mu > 0.0 || c.unilateral) && c.coulomb_fixed_point) {
+    CoulombOptions co;
+    co.relaxation = c.coulomb_relaxation;
+    co.max_iter = c.coulomb_max_iter;
+    res.solution = solve_limit_coulomb(res.model, settings, co, &res.coulomb);
   } else {
     res.solution = solve_limit(res.model, settings);
   }
@@ -124,16 +178,63 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     res.sigma_n.push_back(sol.contact_rn[i] / tl);
     res.tau.push_back(sol.contact_rt[i] / tl);
     res.slip.push_back(sol.contact_wt[i]);
+    res.trib.push_back(tl);
   }
-  // stick fraction: share of the contact length (by tributary weights) where the node sticks
-  double total = 0.0, stuck = 0.0;
-  for (std::size_t i = 0; i < res.model.contacts.size(); ++i) {
-    const double tl = trib[res.model.contacts[i].node];
-    total += tl;
-    if (std::abs(sol.contact_wt[static_cast<Eigen::Index>(i)]) < 1e-6) stuck += tl;
+  res.v_chip = std::sin(c.phi) / std::cos(c.phi - c.alpha);
+  res.stick_tol = c.stick_tol;
+  contact_statistics(res, std::numeric_limits<double>::infinity());
+  // fluxes through the free surfaces (exact for the quadratic edge velocity: Simpson)
+  {
+    const auto& mesh = res.model.mesh;
+    const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));
+    const Vector2d S(-c.t1 / std::tan(c.phi), c.t1);
+    const Vector2d ns(std::sin(c.phi), std::cos(c.phi));
+    const double tol = 1e-6 * c.t1;
+    for (const auto& e : boundary_edges(mesh)) {
+      const Vector2d n = boundary_normal(mesh, e);
+      const Vector2d& xm = mesh.nodes[static_cast<std::size_t>(e.m)];
+      const double L = (mesh.nodes[static_cast<std::size_t>(e.b)] - mesh.nodes[static_cast<std::size_t>(e.a)]).norm();
+      auto vn = [&](int nd) { return sol.velocity[2 * nd] * n.x() + sol.velocity[2 * nd + 1] * n.y(); };
+      const double f = L * (vn(e.a) + 4.0 * vn(e.m) + vn(e.b)) / 6.0;
+      if (std::abs(xm.y() - c.t1) < tol && xm.x() < S.x()) res.flux_top += f;
+      else if (std::abs(xm.dot(nr) - S.dot(nr)) < tol) res.flux_back += f;
+      else if (std::abs(n.dot(ns) - 1.0) < 1e-9 && xm.dot(r) > c.contact_length) res.flux_end += f;  // end ∥ OS
+      else if (std::abs(xm.dot(nr)) < tol && xm.dot(r) > 0.0) res.flux_rake_free += f;  // separation or free part
+    }
+    double rn = 0.0;
+    for (Eigen::Index i = 0; i < sol.slider_rn.size(); ++i) rn += std::abs(sol.slider_rn[i]);
+    res.streamline_force = rn / (c.k * c.t1);
   }
-  res.stick_fraction = total > 0.0 ? stuck / total : 0.0;
   return res;
+}
+
+CuttingResult adapt_cutting(const CuttingSetup& c, int steps, double fraction, std::vector<CuttingAdaptStep>* history,
+                            const SocpSettings& settings) {
+  if (steps < 0) throw InputError("adapt_steps", "must be >= 0");
+  if (!(fraction > 0.0 && fraction <= 1.0)) throw InputError("fraction", "must be in (0, 1]");
+  Mesh mesh = cutting_model(c).mesh;
+  for (int step = 0;; ++step) {
+    CuttingResult r = solve_cutting_on(cutting_model_on_mesh(mesh, c), c, settings);
+    if (history) history->push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.mu_sticking});
+    if (step == steps) return r;
+    const int ne = mesh.num_elements();
+    std::vector<std::pair<double, int>> d(static_cast<std::size_t>(ne));
+    double total = 0.0;
+    for (int e = 0; e < ne; ++e) {
+      const double de = r.solution.point_dissipation.segment(3 * e, 3).sum();
+      d[static_cast<std::size_t>(e)] = {de, e};
+      total += de;
+    }
+    std::sort(d.begin(), d.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<int> marked;
+    double acc = 0.0;
+    for (const auto& [de, e] : d) {
+      if (acc >= fraction * total) break;
+      marked.push_back(e);
+      acc += de;
+    }
+    mesh = refine(mesh, marked);
+  }
 }
 
 double end_normal_stress(const CuttingResult& r, double contact_length, double fraction) {
@@ -200,6 +301,22 @@ ContactLengthResult search_contact_length(CuttingSetup c, const ContactLengthOpt
   }
   out.contact_length = hi;
   out.final = std::move(r_hi);
+  return out;
+}
+
+NaturalContactResult natural_contact_length(CuttingSetup c, double max_length, double tol, const SocpSettings& settings) {
+  if (!(max_length > 0.0)) throw InputError("max_length", "must be positive (in t1)");
+  if (!(tol > 0.0)) throw InputError("tol", "must be positive (in k)");
+  NaturalContactResult out;
+  c.contact_length = max_length * c.t1;
+  c.unilateral = true;
+  out.long_contact = solve_cutting(c, settings);
+  const auto& r = out.long_contact;
+  double l = 0.0;
+  for (std::size_t i = 0; i < r.s.size(); ++i)
+    if (r.sigma_n[i] < -tol * c.k) l = r.s[i];
+  if (!(l > 0.0)) throw NumericalError("natural_contact_length: no compressed contact node");
+  out.contact_length = l;
   return out;
 }
 

@@ -136,6 +136,16 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
     if (contact_of[static_cast<std::size_t>(nd)] >= 0) throw InputError("contact", "node in contact twice");
     contact_of[static_cast<std::size_t>(nd)] = static_cast<int>(c);
   }
+  std::vector<int> slider_of(static_cast<std::size_t>(nn), -1);
+  for (std::size_t c = 0; c < model.sliders.size(); ++c) {
+    const int nd = model.sliders[c].first;
+    if (nd < 0 || nd >= nn) throw InputError("sliders", "node out of range");
+    if (model.fixed.count(2 * nd) || model.fixed.count(2 * nd + 1) || contact_of[static_cast<std::size_t>(nd)] >= 0 ||
+        slider_of[static_cast<std::size_t>(nd)] >= 0)
+      throw InputError("sliders", "slider node " + std::to_string(nd) + " is also fixed, in contact or repeated");
+    if (!(model.sliders[c].second.norm() > 0.0)) throw InputError("sliders", "normal must be non-zero");
+    slider_of[static_cast<std::size_t>(nd)] = static_cast<int>(c);
+  }
 
   const SpMat bt = assemble_bt(mesh);
   const SpMat btr = SpMat(bt.transpose());  // columns = dofs
@@ -154,7 +164,9 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
   std::vector<int> row_of_dof(static_cast<std::size_t>(ndof), -1);
   int p = 0;
   for (int d = 0; d < ndof; ++d) {
-    if (model.fixed.count(d) || contact_of[static_cast<std::size_t>(d / 2)] >= 0) continue;
+    if (model.fixed.count(d) || contact_of[static_cast<std::size_t>(d / 2)] >= 0 ||
+        slider_of[static_cast<std::size_t>(d / 2)] >= 0)
+      continue;
     add_row(ta, p, d, 1.0);
     if (load_mode && F[d] != 0.0) ta.emplace_back(p, ilam, -F[d]);
     bvec.push_back(F0[d]);
@@ -173,11 +185,25 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
     bvec.push_back(tt.x() * F0[dx] + tt.y() * F0[dy]);
     row_of_contact[static_cast<std::size_t>(c)] = p++;
   }
+  const int ns = static_cast<int>(model.sliders.size());
+  std::vector<int> row_of_slider(static_cast<std::size_t>(ns));
+  for (int c = 0; c < ns; ++c) {  // tangential equilibrium only, no tangential reaction
+    const Vector2d nrm = model.sliders[static_cast<std::size_t>(c)].second.normalized();
+    const Vector2d tt(-nrm.y(), nrm.x());
+    const int nd = model.sliders[static_cast<std::size_t>(c)].first, dx = 2 * nd, dy = dx + 1;
+    add_row(ta, p, dx, tt.x());
+    add_row(ta, p, dy, tt.y());
+    const double Ft = tt.x() * F[dx] + tt.y() * F[dy];
+    if (load_mode && Ft != 0.0) ta.emplace_back(p, ilam, -Ft);
+    bvec.push_back(tt.x() * F0[dx] + tt.y() * F0[dy]);
+    row_of_slider[static_cast<std::size_t>(c)] = p++;
+  }
 
   // cone rows: 2 per contact (orthant), then one Q3 per stress point
   std::vector<Trip> tg;
   std::vector<double> hvec;
   int m = 0;
+  std::vector<int> rn_row(static_cast<std::size_t>(nc), -1);
   for (int c = 0; c < nc; ++c) {
     const auto& cn = model.contacts[static_cast<std::size_t>(c)];
     const int dx = 2 * cn.node, dy = dx + 1;
@@ -189,7 +215,9 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
         hvec.push_back(std::max(cn.tresca_bound, 0.0));
         ++m;
       }
-      // r_n ≤ 0: the contact transmits compression only (Eq. 5)
+      // r_n ≤ 0: the contact transmits compression only (Eq. 5); its multiplier z ≥ 0 is the
+      // separation velocity (v·n = −z, away from the rigid body)
+      rn_row[static_cast<std::size_t>(c)] = m;
       add_row(tg, m, dx, cn.normal.x());
       add_row(tg, m, dy, cn.normal.y());
       if (load_mode && Fn != 0.0) tg.emplace_back(m, ilam, -Fn);
@@ -267,12 +295,23 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
     const auto& cn = model.contacts[static_cast<std::size_t>(c)];
     const Vector2d tt(-cn.normal.y(), cn.normal.x());
     const double wt = -r.y[row_of_contact[static_cast<std::size_t>(c)]];
-    sol.velocity[2 * cn.node] = wt * tt.x();
-    sol.velocity[2 * cn.node + 1] = wt * tt.y();
+    const double wn = rn_row[static_cast<std::size_t>(c)] >= 0 ? -r.z[rn_row[static_cast<std::size_t>(c)]] : 0.0;
+    sol.velocity[2 * cn.node] = wt * tt.x() + wn * cn.normal.x();
+    sol.velocity[2 * cn.node + 1] = wt * tt.y() + wn * cn.normal.y();
     sol.contact_wt[c] = wt;
     sol.contact_rt[c] = r.x[nsig + c];
     sol.contact_rn[c] = cn.normal.x() * fint[2 * cn.node] + cn.normal.y() * fint[2 * cn.node + 1];
     sol.friction_dissipation += std::abs(sol.contact_rt[c] * wt);
+  }
+  sol.slider_rn = VectorXd::Zero(ns);
+  for (int c = 0; c < ns; ++c) {
+    const int nd = model.sliders[static_cast<std::size_t>(c)].first;
+    const Vector2d nrm = model.sliders[static_cast<std::size_t>(c)].second.normalized();
+    const Vector2d tt(-nrm.y(), nrm.x());
+    const double w = -r.y[row_of_slider[static_cast<std::size_t>(c)]];
+    sol.velocity[2 * nd] = w * tt.x();
+    sol.velocity[2 * nd + 1] = w * tt.y();
+    sol.slider_rn[c] = nrm.x() * fint[2 * nd] + nrm.y() * fint[2 * nd + 1];
   }
 
   sol.stress.resize(3 * ne, 3);

@@ -1,6 +1,7 @@
 #include "cutbench/limit/register.hpp"
 
 #include <limits>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -25,7 +26,12 @@ ParamSpec p_int(const std::string& name, const std::string& desc, double def, do
   return param(name, Dim::dimensionless, desc, def, lo, hi);
 }
 
-Values validated(const SolverSpec& spec, const Values& given) {
+Values validated(const SolverSpec& spec, const Values& given_in) {
+  // NaN is the "not given" sentinel of phi and contact_length (computed defaults); callers that
+  // validate first (framework, `cutbench bench`) pass the NaN default back in, so drop it here
+  Values given;
+  for (const auto& [k, v] : given_in)
+    if (!std::isnan(v)) given[k] = v;
   ModelSpec tmp;
   tmp.name = spec.name;
   tmp.params = spec.params;
@@ -66,15 +72,17 @@ void add_snapshot(RunOutput& out, const LimitModel& m, const LimitSolution& s, d
   // element centroids: mean stress of the three stress points (over k) and the non-dimensional
   // plastic dissipation density
   Snapshot el;
-  std::vector<double> sxx, syy, txy, dis;
+  std::vector<double> sxx, syy, txy, dis, yld;
   for (int e = 0; e < m.mesh.num_elements(); ++e) {
     const auto& c = m.mesh.elements[static_cast<std::size_t>(e)];
     Eigen::Vector2d x = (m.mesh.nodes[static_cast<std::size_t>(c[0])] + m.mesh.nodes[static_cast<std::size_t>(c[1])] +
                          m.mesh.nodes[static_cast<std::size_t>(c[2])]) / 3.0;
     el.x.push_back(x.x() * length_scale);
     el.y.push_back(x.y() * length_scale);
-    double a = 0, b = 0, t = 0;
+    double a = 0, b = 0, t = 0, yr = 0;
     for (int i = 0; i < 3; ++i) {
+      const double qq = 0.5 * (s.stress(3 * e + i, 0) - s.stress(3 * e + i, 1)), tt = s.stress(3 * e + i, 2);
+      yr = std::max(yr, std::sqrt(qq * qq + tt * tt) / m.k);
       a += s.stress(3 * e + i, 0) / 3.0;
       b += s.stress(3 * e + i, 1) / 3.0;
       t += s.stress(3 * e + i, 2) / 3.0;
@@ -83,11 +91,13 @@ void add_snapshot(RunOutput& out, const LimitModel& m, const LimitSolution& s, d
     syy.push_back(b / m.k);
     txy.push_back(t / m.k);
     dis.push_back(s.element_dissipation_density[e]);
+    yld.push_back(yr);
   }
   el.add("sigma_xx_over_k", "1", sxx);
   el.add("sigma_yy_over_k", "1", syy);
   el.add("tau_xy_over_k", "1", txy);
   el.add("dissipation_density", "1", dis);
+  el.add("sigma_eq_over_k", "1", yld);  // sqrt(J2)/k at the most loaded stress point: 1 at yield
   out.snapshots.push_back(std::move(el));
 }
 
@@ -222,7 +232,12 @@ SolverSpec cutting_spec() {
   s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("t1", Dim::length, "uncut chip thickness", 1.0),
               p_pos("w", Dim::length, "width of cut", 1.0), alpha, p_nonneg("mu", Dim::dimensionless, "friction coefficient", 0.0),
               phi, l, p_int("n", "mesh density (cells across t1)", 8, 2, 64),
-              p_int("coulomb_fixed_point", "1: non-associated Coulomb (fixed point on the pressure), 0: coupled cone", 1, 0, 1)};
+              p_int("coulomb_fixed_point", "1: non-associated Coulomb (fixed point on the pressure), 0: coupled cone", 1, 0, 1),
+              p_int("streamline", "free surfaces held as streamlines (v.n = 0): 0 none, 1 uncut top, 2 top + chip back, 3 top + chip back beyond l", 1, 0, 3),
+              p_int("contact_search", "unrestricted tool: 1 = grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact; 2 = natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)", 0, 0, 2),
+              p_int("steady_state", "1: steady-state loop of Fig. 4 (phi <- min(phi*, phi_M)) around the solve (or the search)", 0, 0, 1),
+              p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3),
+              p_int("adapt_steps", "dissipation-driven isotropic refinement steps (Doerfler 50%); fixed geometry only", 0, 0, 10)};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
                {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
                {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},
@@ -230,6 +245,20 @@ SolverSpec cutting_spec() {
                {"phi", Dim::angle, "shear angle used"},
                {"t2", Dim::length, "chip thickness (Eq. 2)"},
                {"stick_fraction", Dim::dimensionless, "fraction of the contact length in stick (zero slip)"},
+               {"mu_sticking", Dim::dimensionless, "apparent friction sum|r_t|/sum|r_n| over the stick zone"},
+               {"mu_sliding", Dim::dimensionless, "apparent friction sum|r_t|/sum|r_n| over the slip zone"},
+               {"mu_app", Dim::dimensionless, "apparent friction |F_t|/|F_n| of the contact resultants"},
+               {"contact_length", Dim::length, "contact length used (searched when contact_search = 1)"},
+               {"l_over_t1", Dim::dimensionless, "contact length / t1"},
+               {"phi_star", Dim::angle, "shear angle measured from the solution"},
+               {"flux_top", Dim::dimensionless, "volume flux out of the uncut top surface / (v t1)"},
+               {"flux_back", Dim::dimensionless, "volume flux out of the chip back / (v t1)"},
+               {"flux_end", Dim::dimensionless, "volume flux out of the chip end / (v t1)"},
+               {"flux_rake_free", Dim::dimensionless, "volume flux out of the rake-face line / (v t1): free part beyond l (< 0: into the tool) and separating contact nodes"},
+               {"streamline_force", Dim::dimensionless, "sum |normal reaction| on the streamline surfaces / (k t1 w)"},
+               {"max_sigma_eq_over_k", Dim::dimensionless, "max sqrt(J2)/k over all stress points"},
+               {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},
+               {"solves", Dim::dimensionless, "limit-analysis problems solved (Coulomb steps excluded)"},
                {"coulomb_iterations", Dim::dimensionless, "fixed-point iterations on the contact pressure"},
                {"iterations", Dim::dimensionless, "interior-point iterations (last solve)"},
                {"kkt_dimension", Dim::dimensionless, "size of the KKT system"},
@@ -246,9 +275,53 @@ SolverSpec cutting_spec() {
     c.contact_length = len / t1;
     c.n = as_int(v, "n");
     c.coulomb_fixed_point = as_int(v, "coulomb_fixed_point") == 1;
+    c.streamline = as_int(v, "streamline");
+    c.stick_tol = v.at("stick_tol");
+    const int search_mode = as_int(v, "contact_search");
+    const bool search = search_mode > 0, loop = as_int(v, "steady_state") == 1;
+    if (as_int(v, "adapt_steps") > 0 && (search || loop))
+      throw InputError("adapt_steps", "adaptive refinement is only available with a fixed geometry (contact_search = 0, steady_state = 0)");
     if (progress) progress(0.0, "solving");
     const auto t0 = std::chrono::steady_clock::now();
-    const auto r = solve_cutting(c);
+    int solves = 0;
+    std::vector<double> loop_phi, loop_phi_star, loop_fc;
+    auto solve_once = [&](CuttingSetup cs) {
+      if (!search) {
+        const int steps = as_int(v, "adapt_steps");
+        solves += steps + 1;
+        if (steps > 0) return adapt_cutting(cs, steps, 0.5);
+        return solve_cutting(cs);
+      }
+      if (search_mode == 2) {  // the long unilateral-contact solution, profile cut at l_sep
+        auto nat = natural_contact_length(cs);
+        ++solves;
+        c.contact_length = nat.contact_length;
+        truncate_contact(nat.long_contact, nat.contact_length);
+        return std::move(nat.long_contact);
+      }
+      auto res = search_contact_length(cs);
+      solves += static_cast<int>(res.lengths.size());
+      c.contact_length = res.contact_length;
+      if (res.restricted) throw NumericalError("contact_search: sigma_n stays compressive up to l = 5 t1");
+      return std::move(res.final);
+    };
+    CuttingResult r;
+    if (loop) {  // Fig. 4: φ ← min(φ*, φ_M), at most 4 updates, |Δφ| < 0.5°
+      const double phi_m = merchant_shear_angle(a, mu);
+      for (int it = 0; it < 5; ++it) {
+        r = solve_once(c);
+        const double ps = measured_shear_angle(c, r);
+        loop_phi.push_back(c.phi);
+        loop_phi_star.push_back(ps);
+        loop_fc.push_back(r.fc_bar);
+        const double next = std::min(ps, phi_m);
+        if (std::abs(next - c.phi) < 0.5 * kPi / 180.0 || it == 4) break;
+        c.phi = next;
+        if (search) c.contact_length = t1 / std::cos(a) / t1;
+      }
+    } else {
+      r = solve_once(c);
+    }
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     RunOutput out;
     auto put = [&](const std::string& name, double value, const std::string& unit) {
@@ -262,6 +335,78 @@ SolverSpec cutting_spec() {
     put("phi", c.phi, "rad");
     put("t2", r.t2 * t1, "m");
     put("stick_fraction", r.stick_fraction, "1");
+    put("mu_sticking", r.mu_sticking, "1");
+    put("mu_sliding", r.mu_sliding, "1");
+    put("mu_app", r.mu_app, "1");
+    put("contact_length", c.contact_length * t1, "m");
+    put("l_over_t1", c.contact_length, "1");
+    double phi_star = std::numeric_limits<double>::quiet_NaN();
+    try {
+      phi_star = measured_shear_angle(c, r);
+    } catch (const NumericalError&) {
+      out.notes.push_back("phi* not measurable: the free-surface velocity never turns toward the rake face");
+    }
+    put("phi_star", phi_star, "rad");
+    put("flux_top", r.flux_top, "1");
+    put("flux_back", r.flux_back, "1");
+    put("flux_end", r.flux_end, "1");
+    put("flux_rake_free", r.flux_rake_free, "1");
+    put("streamline_force", r.streamline_force, "1");
+    put("solves", solves, "1");
+    {
+      // admissibility and plastification next to the contact
+      const auto& sol = r.solution;
+      double mx = 0.0;
+      for (Eigen::Index sp = 0; sp < sol.stress.rows(); ++sp) {
+        const double qq = 0.5 * (sol.stress(sp, 0) - sol.stress(sp, 1)), tt = sol.stress(sp, 2);
+        mx = std::max(mx, std::sqrt(qq * qq + tt * tt) / c.k);
+      }
+      put("max_sigma_eq_over_k", mx, "1");
+      std::vector<char> incontact(r.model.mesh.nodes.size(), 0);
+      for (const auto& cn : r.model.contacts) incontact[static_cast<std::size_t>(cn.node)] = 1;
+      int pts = 0, yielded = 0;
+      Table layer;
+      layer.name = "rake_layer";
+      std::vector<std::pair<double, double>> prof;  // (s/l, dissipation density) of elements on the contact
+      const Eigen::Vector2d rr(std::sin(a), std::cos(a));
+      for (int e = 0; e < r.model.mesh.num_elements(); ++e) {
+        const auto& el = r.model.mesh.elements[static_cast<std::size_t>(e)];
+        int on = 0;
+        for (int j = 0; j < 3; ++j) on += incontact[static_cast<std::size_t>(el[static_cast<std::size_t>(j)])];
+        if (on < 2) continue;  // an edge on the contact
+        Eigen::Vector2d xc = Eigen::Vector2d::Zero();
+        for (int j = 0; j < 3; ++j) {
+          xc += r.model.mesh.nodes[static_cast<std::size_t>(el[static_cast<std::size_t>(j)])] / 3.0;
+          const double qq = 0.5 * (sol.stress(3 * e + j, 0) - sol.stress(3 * e + j, 1)), tt = sol.stress(3 * e + j, 2);
+          ++pts;
+          if (std::sqrt(qq * qq + tt * tt) >= 0.99 * c.k) ++yielded;
+        }
+        prof.emplace_back(xc.dot(rr) / c.contact_length, sol.element_dissipation_density[e]);
+      }
+      put("contact_yield_fraction", pts ? static_cast<double>(yielded) / pts : 0.0, "1");
+      std::sort(prof.begin(), prof.end());
+      std::vector<double> ls, ld;
+      for (const auto& [x, d] : prof) {
+        ls.push_back(x);
+        ld.push_back(d);
+      }
+      layer.add("s_over_l", "1", ls);
+      layer.add("dissipation_density", "1", ld);
+      out.tables.push_back(std::move(layer));
+    }
+    if (loop) {
+      Table hist;
+      hist.name = "steady_state";
+      std::vector<double> pd, psd;
+      for (std::size_t i = 0; i < loop_phi.size(); ++i) {
+        pd.push_back(loop_phi[i]);
+        psd.push_back(loop_phi_star[i]);
+      }
+      hist.add("phi", "rad", pd);
+      hist.add("phi_star", "rad", psd);
+      hist.add("fc_bar", "1", loop_fc);
+      out.tables.push_back(std::move(hist));
+    }
     put("coulomb_iterations", r.coulomb.iterations, "1");
     if (c.mu > 0.0 && c.coulomb_fixed_point && !r.coulomb.converged)
       out.notes.push_back("Coulomb fixed point not converged (last relative pressure change " +
@@ -269,20 +414,26 @@ SolverSpec cutting_spec() {
     add_solver_stats(out, r.solution, dt);
     Table contact;
     contact.name = "rake_contact";
-    std::vector<double> s_over_l, sn, tau, slip;
+    std::vector<double> s_over_l, sn, tau, slip, stk;
     for (std::size_t i = 0; i < r.s.size(); ++i) {
       s_over_l.push_back(r.s[i] / c.contact_length);
       sn.push_back(r.sigma_n[i]);
       tau.push_back(r.tau[i]);
       slip.push_back(r.slip[i]);
+      stk.push_back(r.stick[i]);
     }
     contact.add("s_over_l", "1", s_over_l);
     contact.add("sigma_n_over_k", "1", sn);
     contact.add("tau_over_k", "1", tau);
     contact.add("slip_velocity", "1", slip);
+    contact.add("stick", "1", stk);
     out.tables.push_back(std::move(contact));
     add_snapshot(out, r.model, r.solution, t1, 1.0);
-    out.notes.push_back("fixed geometry: no steady-state (phi*) update, no contact-length search, no adaptive mesh yet");
+    out.notes.push_back(std::string(loop ? "steady-state loop (Fig. 4) on phi; " : "fixed shear angle; ") +
+                        (search ? "contact length searched (sigma_n -> 0); " : "contact length imposed; ") +
+                        "structured mesh, no adaptive refinement");
+    out.notes.push_back("free surfaces held as streamlines: mode " + std::to_string(c.streamline) +
+                        " (0 none, 1 uncut top, 2 top + chip back, 3 top + chip back beyond l)");
     out.notes.push_back("contact stresses are lumped nodal reactions over tributary lengths (T6 weights 1/6, 4/6, 1/6)");
     if (progress) progress(1.0, "done");
     return out;

@@ -27,6 +27,20 @@ struct CuttingSetup {
   // μ > 0: true = non-associated Coulomb with w_n = 0 by the fixed point on the pressure
   // (solve_limit_coulomb); false = the coupled (associated) cone |r_t| + μ r_n ≤ 0.
   bool coulomb_fixed_point = true;
+  // under-relaxation p ← ω p_new + (1 − ω) p of the pressure fixed point: with ω = 1 it oscillates
+  // for μ ≥ 1 on the restricted tool (F̄c 2.60–2.67 for 30 steps at μ = 1, n = 6); ω = 0.5 converges
+  double coulomb_relaxation = 0.5;
+  // also run the pressure fixed point at μ = 0, so that the rake contact is unilateral (r_n ≤ 0,
+  // separation allowed) after the first step; set by natural_contact_length()
+  bool unilateral = false;
+  int coulomb_max_iter = 40;
+  // Steady-state streamline condition on the free surfaces (v·n = 0, frictionless, normal
+  // reaction free): 0 = none (surfaces traction-free, material may cross them), 1 = the uncut
+  // top surface y = t1 ahead of S, 2 = the top surface and the chip back surface.
+  int streamline = 1;
+  // a contact node sticks when |w_t| < stick_tol · v_chip, v_chip = sin φ / cos(φ − α) the speed
+  // of the rigid chip (the tip node is fixed, so w_t rises continuously from zero)
+  double stick_tol = 1e-3;
 };
 
 struct CuttingResult {
@@ -40,7 +54,22 @@ struct CuttingResult {
   double ff_bar = 0.0;
   // rake-face profile, ordered by s (distance from the tip), lumped nodal values
   std::vector<double> s, sigma_n, tau, slip;
-  double stick_fraction = 0.0;  // fraction of the contact length with |w_t| < 1e-6 (node-wise)
+  double stick_fraction = 0.0;  // fraction of the contact length in stick (|w_t| < stick_tol·v_chip)
+  // apparent friction Σ|r_t| / Σ|r_n| over the stick nodes, the slip nodes, and |F_t|/|F_n| of
+  // the resultants over the whole contact (NaN where a zone is empty)
+  double mu_sticking = 0.0, mu_sliding = 0.0, mu_app = 0.0;
+  std::vector<char> stick;  // per profile point (ordered by s)
+  std::vector<double> trib;  // tributary length of each profile point
+  double v_chip = 1.0, stick_tol = 1e-3;
+  // volume fluxes (per unit width, unit inflow speed → t1 in total) leaving through the uncut
+  // top surface, the chip back and the chip end; steady state needs top = back = 0
+  double flux_top = 0.0, flux_back = 0.0, flux_end = 0.0;
+  // through the rake-face line: the free part beyond l (< 0: the chip moves into the tool there)
+  // and, with the unilateral contact, the separating nodes (v·n = −z < 0: the chip lifts off)
+  double flux_rake_free = 0.0;
+  // resultant normal force on the streamline (slider) surfaces, |Σ r_n| / (k t1): how far the
+  // imposed geometry is from a traction-free steady state (0 when streamline = 0); Σ|r_n|/(k t1)
+  double streamline_force = 0.0;
 };
 
 double chip_thickness(double t1, double phi, double alpha);  // Eq. 2
@@ -91,7 +120,30 @@ struct ContactLengthResult {
 };
 ContactLengthResult search_contact_length(CuttingSetup setup, const ContactLengthOptions& opt = {},
                                           const SocpSettings& settings = {});
+// Contact length from the natural separation point: the rake face is put in contact over a long
+// length (max_length·t1); after the first (coupled) step of the pressure fixed point the rows
+// |r_t| ≤ μ p_k, r_n ≤ 0 let nodes separate (w_n away from the tool) where the pressure vanishes.
+// l_sep is the position of the last contact node with σ_n < −tol·k (lumped nodal values).
+struct NaturalContactResult {
+  double contact_length = 0.0;  // l_sep
+  CuttingResult long_contact;   // the solve over max_length
+};
+NaturalContactResult natural_contact_length(CuttingSetup setup, double max_length = 4.0, double tol = 0.1,
+                                            const SocpSettings& settings = {});
+// Recompute stick fraction and apparent friction from the profile, over s ≤ l_max.
+void contact_statistics(CuttingResult& r, double l_max);
+// Keep the profile points with s ≤ l_max only and recompute the statistics over them.
+void truncate_contact(CuttingResult& r, double l_max);
 CuttingResult solve_cutting(const CuttingSetup& setup, const SocpSettings& settings = {});
+// Dissipation-driven isotropic refinement of the cutting mesh with the full contact model (pressure
+// fixed point, streamlines): solve, mark the elements carrying `fraction` of the plastic dissipation
+// (Dörfler), bisect (conforming longest-edge), rebuild the boundary conditions, `steps` times.
+struct CuttingAdaptStep {
+  int elements = 0;
+  double fc_bar = 0.0, stick_fraction = 0.0, mu_sticking = 0.0;
+};
+CuttingResult adapt_cutting(const CuttingSetup& setup, int steps, double fraction = 0.5,
+                            std::vector<CuttingAdaptStep>* history = nullptr, const SocpSettings& settings = {});
 CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& setup, const SocpSettings& settings = {});
 
 }  // namespace cutbench::limit

@@ -47,6 +47,10 @@ struct LimitModel {
   Eigen::VectorXd load;           // reference load F (2·nodes) or empty
   Eigen::VectorXd dead_load;      // fixed load F0 (2·nodes) or empty
   std::vector<ContactNode> contacts;
+  // Bilateral frictionless constraints v·n = 0 ("sliders"): the node moves tangentially to the
+  // given unit normal, the normal reaction is free (either sign) and no tangential force acts.
+  // Used for the steady-state streamline condition on free surfaces of the cutting model.
+  std::vector<std::pair<int, Eigen::Vector2d>> sliders;
 
   void fix(int node, int component, double value = 0.0) { fixed[2 * node + component] = value; }
   // Consistent nodal forces of a uniform traction t on every boundary edge whose midpoint
@@ -73,6 +77,8 @@ struct LimitSolution {
   // per contact node (same order as LimitModel::contacts)
   Eigen::VectorXd contact_rn, contact_rt, contact_wt;
   double friction_dissipation = 0.0;  // Σ |r_t w_t|
+  // per slider (same order as LimitModel::sliders): normal reaction n·(Bᵀσ − λF − F0)
+  Eigen::VectorXd slider_rn;
 };
 
 LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings = {});

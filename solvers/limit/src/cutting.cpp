@@ -217,22 +217,7 @@ CuttingResult adapt_cutting(const CuttingSetup& c, int steps, double fraction, s
     CuttingResult r = solve_cutting_on(cutting_model_on_mesh(mesh, c), c, settings);
     if (history) history->push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.mu_sticking});
     if (step == steps) return r;
-    const int ne = mesh.num_elements();
-    std::vector<std::pair<double, int>> d(static_cast<std::size_t>(ne));
-    double total = 0.0;
-    for (int e = 0; e < ne; ++e) {
-      const double de = r.solution.point_dissipation.segment(3 * e, 3).sum();
-      d[static_cast<std::size_t>(e)] = {de, e};
-      total += de;
-    }
-    std::sort(d.begin(), d.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    std::vector<int> marked;
-    double acc = 0.0;
-    for (const auto& [de, e] : d) {
-      if (acc >= fraction * total) break;
-      marked.push_back(e);
-      acc += de;
-    }
+    const std::vector<int> marked = dorfler_mark(r.solution, mesh.num_elements(), fraction);
     mesh = refine(mesh, marked);
   }
 }

@@ -406,6 +406,25 @@ LimitModel prandtl_punch_on_mesh(Mesh mesh, double B) {
   return m;
 }
 
+std::vector<int> dorfler_mark(const LimitSolution& sol, int num_elements, double fraction) {
+  std::vector<std::pair<double, int>> d(static_cast<std::size_t>(num_elements));
+  double total = 0.0;
+  for (int e = 0; e < num_elements; ++e) {
+    const double de = sol.point_dissipation.segment(3 * e, 3).sum();
+    d[static_cast<std::size_t>(e)] = {de, e};
+    total += de;
+  }
+  std::sort(d.begin(), d.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<int> marked;
+  double acc = 0.0;
+  for (const auto& [de, e] : d) {
+    if (acc >= fraction * total) break;
+    marked.push_back(e);
+    acc += de;
+  }
+  return marked;
+}
+
 std::vector<AdaptStep> adapt_limit(const Mesh& initial, const std::function<LimitModel(Mesh)>& build,
                                    const AdaptOptions& opt, const SocpSettings& settings, LimitSolution* final_solution,
                                    Mesh* final_mesh) {
@@ -417,23 +436,7 @@ std::vector<AdaptStep> adapt_limit(const Mesh& initial, const std::function<Limi
     sol = solve_limit(model, settings);
     steps.push_back({model.mesh.num_elements(), sol.collapse, sol.socp.seconds, sol.socp.iterations});
     if (step == opt.steps) break;
-    // Dörfler marking on the element plastic dissipation
-    const int ne = model.mesh.num_elements();
-    std::vector<std::pair<double, int>> d(static_cast<std::size_t>(ne));
-    double total = 0.0;
-    for (int e = 0; e < ne; ++e) {
-      const double de = sol.point_dissipation.segment(3 * e, 3).sum();
-      d[static_cast<std::size_t>(e)] = {de, e};
-      total += de;
-    }
-    std::sort(d.begin(), d.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    std::vector<int> marked;
-    double acc = 0.0;
-    for (const auto& [de, e] : d) {
-      if (acc >= opt.fraction * total) break;
-      marked.push_back(e);
-      acc += de;
-    }
+    const std::vector<int> marked = dorfler_mark(sol, model.mesh.num_elements(), opt.fraction);
     mesh = refine(model.mesh, marked);
   }
   if (final_solution) *final_solution = std::move(sol);

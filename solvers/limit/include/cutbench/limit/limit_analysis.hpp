@@ -111,6 +111,10 @@ LimitModel prandtl_punch_model(double half_width, int n, double grading = 1.05, 
 // The same boundary conditions on any mesh of [0, 5B] × [−3B, 0] (e.g. after refinement).
 LimitModel prandtl_punch_on_mesh(Mesh mesh, double half_width);
 
+// Dörfler marking: the elements (largest first) that together carry at least `fraction` of the
+// total plastic dissipation of `sol` (three stress points per element).
+std::vector<int> dorfler_mark(const LimitSolution& sol, int num_elements, double fraction);
+
 // Adaptive refinement driven by the plastic dissipation: solve, mark the elements carrying the
 // share `fraction` of the dissipation (Dörfler), bisect them (conforming longest-edge), rebuild
 // the model with `build`, repeat `steps` times. Isotropic (the paper's is anisotropic).

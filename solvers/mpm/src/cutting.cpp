@@ -350,9 +350,24 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   mean_std(wn, m, sd);
   put("F_nb", m, "N/m");
   put("F_nb_std", sd, "N/m");
+  mean_std(wn, m, sd);
+  put("F_nb_over_bGc", m / s.G_c, "1");
   mean_std(wg, m, sd);
   put("tip_gap", m, "m");
   put("touching", m < dx ? 1.0 : 0.0, "1");
+  {
+    std::size_t nt = 0;
+    for (double g : wg) nt += g < dx ? 1 : 0;
+    put("touching_fraction", wg.empty() ? std::nan("") : static_cast<double>(nt) / static_cast<double>(wg.size()),
+        "1");
+  }
+  {  // Williams' scaling and the friction parameter of Eq. 12
+    const double E = s.material.youngs(), nu = s.material.poisson();
+    const double Eprime = E / (1.0 - nu * nu);
+    put("h_star", s.material.sigma_y0 * s.material.sigma_y0 * s.h / (2.0 * Eprime * s.G_c), "1");
+    const double ta = std::tan(s.rake);
+    put("Z", (s.mu - ta) / (1.0 + s.mu * ta), "1");
+  }
   put("mode1_fraction", pb.mode1_fraction(), "1");
   put("released_energy", pb.released_energy(), "J/m");
   put("particles", static_cast<double>(pb.size()), "1");
@@ -381,6 +396,17 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
     const DomainCoverage cov = domain_coverage(px, py, fxx, fxy, fyx, fyy, use, s.h / std::lround(s.particles_through_chip));
     put("chip_domain_gap_fraction", cov.gap_fraction, "1");
     put("chip_domain_overlap_fraction", cov.overlap_fraction, "1");
+    // chip curling (Fig 17): mean material rotation (polar decomposition of F) of the chip's
+    // leading end, the particles above the crack that started within h of the specimen's left edge
+    double rs = 0.0, rc = 0.0;
+    for (std::size_t p = 0; p < n; ++p) {
+      if (pb.rigid(p) || !pb.above_crack(p) || pb.reference_position(p).x() > s.h) continue;
+      const double a = std::atan2(fyx[p] - fxy[p], fxx[p] + fyy[p]);
+      rs += std::sin(a);
+      rc += std::cos(a);
+    }
+    double rot = std::atan2(rs, rc);  // circular mean in (-pi, pi]; curling is clockwise (negative)
+    put("chip_end_rotation", -rot, "rad");
   }
   out.notes.push_back("F_c, F_t: force of the tool on the material per unit width (F_t positive pushing the "
                       "material down, the paper's sign); averages over " +
@@ -410,8 +436,13 @@ SolverSpec cutting_solver_spec() {
       {"F_t_std", Dim::force_per_width, "std of F_t"},
       {"F_nb", Dim::force_per_width, "steady bottom-face (rubbing) normal force"},
       {"F_nb_std", Dim::force_per_width, "std of F_nb"},
+      {"F_nb_over_bGc", Dim::dimensionless, "F_nb / (b G_c), the rubbing force of Fig. 10"},
       {"tip_gap", Dim::length, "mean crack-tip minus tool-tip x in the steady window"},
-      {"touching", Dim::dimensionless, "1 when the tool touches the crack tip"},
+      {"touching", Dim::dimensionless, "1 when the tool touches the crack tip (mean gap below one cell)"},
+      {"touching_fraction", Dim::dimensionless, "fraction of steady-window outputs with the gap below one cell"},
+      {"h_star", Dim::dimensionless, "Williams' dimensionless depth sigma_y0^2 h / (2 E' G_c), E' = E/(1 - nu^2)"},
+      {"Z", Dim::dimensionless, "(mu - tan alpha) / (1 + mu tan alpha), the abscissa of Fig. 16"},
+      {"chip_end_rotation", Dim::angle, "clockwise material rotation of the chip's leading end (curling)"},
       {"mode1_fraction", Dim::dimensionless, "fraction of released energy in mode I"},
       {"released_energy", Dim::force_per_width, "cohesive energy released per unit width (J/m)"},
       {"particles", Dim::dimensionless, "number of particles"},

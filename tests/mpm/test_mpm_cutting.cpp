@@ -94,6 +94,14 @@ BOOST_AUTO_TEST_CASE(tiny_run_produces_tables_scalars_snapshots) {
               out.scalars.at("particle_steps_per_s"));
   BOOST_TEST(out.scalars.at("F_c") > 0.0);
   BOOST_TEST(out.scalars.at("frozen_particles") == 0.0);
+  // derived outputs: Williams' h* (paper Sec. 4: 0.1392 per mm for these properties; 0.9 mm by default)
+  // and Z = -tan(alpha) at mu = 0 (default rake 10 deg); dimensionless forces
+  BOOST_TEST(out.scalars.at("h_star") == 0.13923 * 0.9, boost::test_tools::tolerance(1e-4));
+  BOOST_TEST(out.scalars.at("Z") == -std::tan(10.0 * M_PI / 180.0), boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(out.scalars.at("F_nb_over_bGc") == out.scalars.at("F_nb") / 2000.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(out.scalars.at("touching_fraction") >= 0.0);
+  BOOST_TEST(out.scalars.at("touching_fraction") <= 1.0);
+  BOOST_TEST(std::isfinite(out.scalars.at("chip_end_rotation")));
   // the MUSL strain update runs through the same runner
   Values vm = v;
   vm["strain_update"] = 1.0;

@@ -278,9 +278,18 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   int snap_done = 0;
   const auto t0 = std::chrono::steady_clock::now();
   double next_progress = 0.0;
+  // released energy (total and mode I) when the steady window opens, for the steady-state mode mix
+  const double t_window = v.at("steady_start_fraction") * T;
+  bool window_open = false;
+  double e_at_window = 0.0, eI_at_window = 0.0;
   const long max_steps = static_cast<long>(std::ceil(T / pb.dt())) + 1;
   for (long k = 0; k < max_steps && pb.time() < T - 0.5 * pb.dt(); ++k) {
     pb.step();
+    if (!window_open && pb.time() >= t_window - 0.5 * pb.dt()) {
+      window_open = true;
+      e_at_window = pb.released_energy();
+      eI_at_window = e_at_window > 0.0 ? pb.mode1_fraction() * e_at_window : 0.0;
+    }
     const ContactForces& f = pb.contact_forces();
     acc_c += f.total.x();
     acc_t += -f.total.y();
@@ -370,6 +379,11 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   }
   put("mode1_fraction", pb.mode1_fraction(), "1");
   put("released_energy", pb.released_energy(), "J/m");
+  {
+    const double e = pb.released_energy();
+    const double eI = e > 0.0 ? pb.mode1_fraction() * e : 0.0;
+    put("mode1_fraction_steady", e - e_at_window > 0.0 ? (eI - eI_at_window) / (e - e_at_window) : std::nan(""), "1");
+  }
   put("particles", static_cast<double>(pb.size()), "1");
   put("steps", static_cast<double>(pb.steps()), "1");
   put("dt", pb.dt(), "s");
@@ -396,17 +410,38 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
     const DomainCoverage cov = domain_coverage(px, py, fxx, fxy, fyx, fyy, use, s.h / std::lround(s.particles_through_chip));
     put("chip_domain_gap_fraction", cov.gap_fraction, "1");
     put("chip_domain_overlap_fraction", cov.overlap_fraction, "1");
-    // chip curling (Fig 17): mean material rotation (polar decomposition of F) of the chip's
-    // leading end, the particles above the crack that started within h of the specimen's left edge
-    double rs = 0.0, rc = 0.0;
+    // chip curling (Fig 17): direction of the deformed image F e_x of the originally horizontal
+    // material fibres (the chip's layers). Per reference column of the material above the crack
+    // (width one particle), the circular mean of the unit vectors F e_x / |F e_x|; the angles are
+    // unwrapped from uncut material (2h ahead of the crack tip, angle ~0) back along the chip to its
+    // leading end, so turns beyond 180 deg are counted. Reported: minus the mean unwrapped angle of
+    // the columns that started within h of the left edge (curling turns the layers clockwise).
+    const double psz = s.h / std::lround(s.particles_through_chip);
+    const double xlast = std::min(tip + 2.0 * s.h, s.width_factor * s.h);
+    const int ncol = std::max(1, static_cast<int>(std::ceil(xlast / psz)));
+    std::vector<double> cs(static_cast<std::size_t>(ncol), 0.0), sn(static_cast<std::size_t>(ncol), 0.0);
     for (std::size_t p = 0; p < n; ++p) {
-      if (pb.rigid(p) || !pb.above_crack(p) || pb.reference_position(p).x() > s.h) continue;
-      const double a = std::atan2(fyx[p] - fxy[p], fxx[p] + fyy[p]);
-      rs += std::sin(a);
-      rc += std::cos(a);
+      if (pb.rigid(p) || !pb.above_crack(p)) continue;
+      const int c = static_cast<int>(std::floor(pb.reference_position(p).x() / psz));
+      const double len = std::hypot(fxx[p], fyx[p]);
+      if (c < 0 || c >= ncol || len <= 0.0) continue;
+      cs[static_cast<std::size_t>(c)] += fxx[p] / len;
+      sn[static_cast<std::size_t>(c)] += fyx[p] / len;
     }
-    double rot = std::atan2(rs, rc);  // circular mean in (-pi, pi]; curling is clockwise (negative)
-    put("chip_end_rotation", -rot, "rad");
+    double prev = 0.0, end_sum = 0.0;
+    int end_n = 0;
+    for (int c = ncol - 1; c >= 0; --c) {
+      const auto k = static_cast<std::size_t>(c);
+      if (cs[k] == 0.0 && sn[k] == 0.0) continue;
+      double a = std::atan2(sn[k], cs[k]);
+      a += 2.0 * M_PI * std::round((prev - a) / (2.0 * M_PI));  // nearest branch to the previous column
+      prev = a;
+      if ((c + 0.5) * psz <= s.h) {
+        end_sum += a;
+        ++end_n;
+      }
+    }
+    put("chip_end_rotation", end_n > 0 ? -end_sum / end_n : std::nan(""), "rad");
   }
   out.notes.push_back("F_c, F_t: force of the tool on the material per unit width (F_t positive pushing the "
                       "material down, the paper's sign); averages over " +
@@ -442,8 +477,10 @@ SolverSpec cutting_solver_spec() {
       {"touching_fraction", Dim::dimensionless, "fraction of steady-window outputs with the gap below one cell"},
       {"h_star", Dim::dimensionless, "Williams' dimensionless depth sigma_y0^2 h / (2 E' G_c), E' = E/(1 - nu^2)"},
       {"Z", Dim::dimensionless, "(mu - tan alpha) / (1 + mu tan alpha), the abscissa of Fig. 16"},
-      {"chip_end_rotation", Dim::angle, "clockwise material rotation of the chip's leading end (curling)"},
-      {"mode1_fraction", Dim::dimensionless, "fraction of released energy in mode I"},
+      {"chip_end_rotation", Dim::angle, "clockwise turn of the chip layers (F e_x, unwrapped along the chip from uncut material) at the chip's leading end: 0 uncut, 90 deg - alpha for a straight chip on the rake face, 360 deg for a full curl"},
+      {"mode1_fraction", Dim::dimensionless, "fraction of released energy in mode I (all segments failed in the run)"},
+      {"mode1_fraction_steady", Dim::dimensionless,
+       "fraction of released energy in mode I, segments failed in the steady window (t >= steady_start_fraction T)"},
       {"released_energy", Dim::force_per_width, "cohesive energy released per unit width (J/m)"},
       {"particles", Dim::dimensionless, "number of particles"},
       {"steps", Dim::dimensionless, "time steps"},

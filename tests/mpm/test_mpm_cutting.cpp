@@ -111,6 +111,13 @@ BOOST_AUTO_TEST_CASE(tiny_run_produces_tables_scalars_snapshots) {
   std::printf("tiny run, MUSL: F_c = %.1f N/m\n", om.scalars.at("F_c"));
   BOOST_TEST(om.scalars.at("F_c") > 0.0);
   BOOST_TEST(om.snapshots.empty());
+  // the experimental blended update (strain_update = 2) runs and differs from both schemes
+  vm["strain_update"] = 2.0;
+  const RunOutput ob = spec.run(vm, {});
+  std::printf("tiny run, blend: F_c = %.1f N/m\n", ob.scalars.at("F_c"));
+  BOOST_TEST(ob.scalars.at("F_c") > 0.0);
+  BOOST_TEST(ob.scalars.at("F_c") != om.scalars.at("F_c"));
+  BOOST_CHECK_THROW(spec.run({{"strain_update", 3.0}}, {}), InputError);
 }
 
 // Deterministic for a fixed thread count: two runs with 2 threads agree bitwise (per-thread node

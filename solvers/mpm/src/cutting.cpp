@@ -127,8 +127,10 @@ std::vector<ParamSpec> cutting_params() {
       param("mu", Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0),
       param("pic_fraction", Dim::dimensionless, "PIC damping fraction (paper's 1 - beta): 1 = pure PIC", 1.0, 0.0, 1.0),
       param("position_order", Dim::dimensionless, "position update: 0, 1 or 2 (Eq. 10)", 2.0, 0.0, 2.0),
-      param("strain_update", Dim::dimensionless, "0 = USL (updated grid velocities), 1 = MUSL (re-extrapolated momenta)",
-           0.0, 0.0, 1.0),
+      param("strain_update", Dim::dimensionless,
+           "0 = USL (updated grid velocities), 1 = MUSL (re-extrapolated momenta), 2 = experimental blend "
+           "(L = (L_USL + L_MUSL)/2)",
+           0.0, 0.0, 2.0),
       param("particles_through_chip", Dim::dimensionless, "particles through the depth of cut", 15.0, 2.0, 200.0),
       param("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0),
       param("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
@@ -183,8 +185,9 @@ CuttingSetup cutting_setup_from(const Values& v) {
   if (order != 0.0 && order != 1.0 && order != 2.0) throw InputError("position_order", "must be 0, 1 or 2");
   s.numerics.position_order = static_cast<int>(order);
   const double su = v.at("strain_update");
-  if (su != 0.0 && su != 1.0) throw InputError("strain_update", "must be 0 (USL) or 1 (MUSL)");
-  s.numerics.musl = su == 1.0;
+  if (su != 0.0 && su != 1.0 && su != 2.0) throw InputError("strain_update", "must be 0 (USL), 1 (MUSL) or 2 (blend)");
+  s.numerics.musl = su >= 1.0;
+  s.numerics.blend = su == 2.0;
   s.numerics.cfl = v.at("cfl");
   s.numerics.threads = static_cast<int>(v.at("threads"));
   s.particles_through_chip = v.at("particles_through_chip");

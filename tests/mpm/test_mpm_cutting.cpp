@@ -118,6 +118,13 @@ BOOST_AUTO_TEST_CASE(tiny_run_produces_tables_scalars_snapshots) {
   BOOST_TEST(ob.scalars.at("F_c") > 0.0);
   BOOST_TEST(ob.scalars.at("F_c") != om.scalars.at("F_c"));
   BOOST_CHECK_THROW(spec.run({{"strain_update", 3.0}}, {}), InputError);
+  BOOST_CHECK_THROW(spec.run({{"musl_recontact", 0.5}}, {}), InputError);
+  // MUSL without contact on the re-extrapolated momenta (diagnostic) runs and differs from MUSL
+  vm["strain_update"] = 1.0;
+  vm["musl_recontact"] = 0.0;
+  const RunOutput onc = spec.run(vm, {});
+  BOOST_TEST(onc.scalars.at("F_c") > 0.0);
+  BOOST_TEST(onc.scalars.at("F_c") != om.scalars.at("F_c"));
 }
 
 // Deterministic for a fixed thread count: two runs with 2 threads agree bitwise (per-thread node

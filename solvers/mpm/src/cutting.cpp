@@ -131,6 +131,9 @@ std::vector<ParamSpec> cutting_params() {
            "0 = USL (updated grid velocities), 1 = MUSL (re-extrapolated momenta), 2 = experimental blend "
            "(L = (L_USL + L_MUSL)/2)",
            0.0, 0.0, 2.0),
+      param("musl_recontact", Dim::dimensionless,
+           "MUSL only: 1 = re-apply tool/crack contact to the re-extrapolated momenta (default), 0 = skip it (diagnostic)",
+           1.0, 0.0, 1.0),
       param("particles_through_chip", Dim::dimensionless, "particles through the depth of cut", 15.0, 2.0, 200.0),
       param("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0),
       param("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
@@ -188,6 +191,9 @@ CuttingSetup cutting_setup_from(const Values& v) {
   if (su != 0.0 && su != 1.0 && su != 2.0) throw InputError("strain_update", "must be 0 (USL), 1 (MUSL) or 2 (blend)");
   s.numerics.musl = su >= 1.0;
   s.numerics.blend = su == 2.0;
+  const double rc = v.at("musl_recontact");
+  if (rc != 0.0 && rc != 1.0) throw InputError("musl_recontact", "must be 0 or 1");
+  s.numerics.musl_recontact = rc == 1.0;
   s.numerics.cfl = v.at("cfl");
   s.numerics.threads = static_cast<int>(v.at("threads"));
   s.particles_through_chip = v.at("particles_through_chip");

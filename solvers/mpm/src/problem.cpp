@@ -646,7 +646,7 @@ void MpmProblem::remap_momenta() {
         has[f] = nd.m > mmin_;
         pm[f] = has[f] ? Eigen::Vector2d(nd.px, nd.py) : Eigen::Vector2d::Zero();
       }
-      resolve_contacts(n, pm, has, V, imp, impb);
+      if (cfg_.numerics.musl_recontact) resolve_contacts(n, pm, has, V, imp, impb);
       const int fm = fixed_[n];
       for (int f = 0; f < 2; ++f) {
         const std::size_t k = static_cast<std::size_t>(f) * nnz + n;

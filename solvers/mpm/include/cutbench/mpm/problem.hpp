@@ -38,6 +38,9 @@ struct Numerics {
   // and half from the re-extrapolated momenta. Not NairnMPM's USAVG (which splits the step into a
   // strain-first and a strain-last half); used to bracket the touching/bending transition.
   bool blend = false;
+  // Diagnostic (with musl = true): false skips the contact re-applied to the re-extrapolated
+  // momenta (boundary conditions are still applied), to separate MUSL's two ingredients.
+  bool musl_recontact = true;
   double cfl = 0.4;           // dt = cfl * dx / c_p
   int sort_interval = 50;     // steps between particle sorts by cell (0 = never)
   double min_mass_fraction = 1e-8;  // nodes lighter than this times a particle mass are empty

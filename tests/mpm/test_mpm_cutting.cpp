@@ -94,6 +94,14 @@ BOOST_AUTO_TEST_CASE(tiny_run_produces_tables_scalars_snapshots) {
               out.scalars.at("particle_steps_per_s"));
   BOOST_TEST(out.scalars.at("F_c") > 0.0);
   BOOST_TEST(out.scalars.at("frozen_particles") == 0.0);
+  // derived outputs: Williams' h* (paper Sec. 4: 0.1392 per mm for these properties; 0.9 mm by default)
+  // and Z = -tan(alpha) at mu = 0 (default rake 10 deg); dimensionless forces
+  BOOST_TEST(out.scalars.at("h_star") == 0.13923 * 0.9, boost::test_tools::tolerance(1e-4));
+  BOOST_TEST(out.scalars.at("Z") == -std::tan(10.0 * M_PI / 180.0), boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(out.scalars.at("F_nb_over_bGc") == out.scalars.at("F_nb") / 2000.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(out.scalars.at("touching_fraction") >= 0.0);
+  BOOST_TEST(out.scalars.at("touching_fraction") <= 1.0);
+  BOOST_TEST(std::isfinite(out.scalars.at("chip_end_rotation")));
   // the MUSL strain update runs through the same runner
   Values vm = v;
   vm["strain_update"] = 1.0;
@@ -103,6 +111,20 @@ BOOST_AUTO_TEST_CASE(tiny_run_produces_tables_scalars_snapshots) {
   std::printf("tiny run, MUSL: F_c = %.1f N/m\n", om.scalars.at("F_c"));
   BOOST_TEST(om.scalars.at("F_c") > 0.0);
   BOOST_TEST(om.snapshots.empty());
+  // the experimental blended update (strain_update = 2) runs and differs from both schemes
+  vm["strain_update"] = 2.0;
+  const RunOutput ob = spec.run(vm, {});
+  std::printf("tiny run, blend: F_c = %.1f N/m\n", ob.scalars.at("F_c"));
+  BOOST_TEST(ob.scalars.at("F_c") > 0.0);
+  BOOST_TEST(ob.scalars.at("F_c") != om.scalars.at("F_c"));
+  BOOST_CHECK_THROW(spec.run({{"strain_update", 3.0}}, {}), InputError);
+  BOOST_CHECK_THROW(spec.run({{"musl_recontact", 0.5}}, {}), InputError);
+  // MUSL without contact on the re-extrapolated momenta (diagnostic) runs and differs from MUSL
+  vm["strain_update"] = 1.0;
+  vm["musl_recontact"] = 0.0;
+  const RunOutput onc = spec.run(vm, {});
+  BOOST_TEST(onc.scalars.at("F_c") > 0.0);
+  BOOST_TEST(onc.scalars.at("F_c") != om.scalars.at("F_c"));
 }
 
 // Deterministic for a fixed thread count: two runs with 2 threads agree bitwise (per-thread node

@@ -127,8 +127,13 @@ std::vector<ParamSpec> cutting_params() {
       param("mu", Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0),
       param("pic_fraction", Dim::dimensionless, "PIC damping fraction (paper's 1 - beta): 1 = pure PIC", 1.0, 0.0, 1.0),
       param("position_order", Dim::dimensionless, "position update: 0, 1 or 2 (Eq. 10)", 2.0, 0.0, 2.0),
-      param("strain_update", Dim::dimensionless, "0 = USL (updated grid velocities), 1 = MUSL (re-extrapolated momenta)",
-           0.0, 0.0, 1.0),
+      param("strain_update", Dim::dimensionless,
+           "0 = USL (updated grid velocities), 1 = MUSL (re-extrapolated momenta), 2 = experimental blend "
+           "(L = (L_USL + L_MUSL)/2)",
+           0.0, 0.0, 2.0),
+      param("musl_recontact", Dim::dimensionless,
+           "MUSL only: 1 = re-apply tool/crack contact to the re-extrapolated momenta (default), 0 = skip it (diagnostic)",
+           1.0, 0.0, 1.0),
       param("particles_through_chip", Dim::dimensionless, "particles through the depth of cut", 15.0, 2.0, 200.0),
       param("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0),
       param("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
@@ -183,8 +188,12 @@ CuttingSetup cutting_setup_from(const Values& v) {
   if (order != 0.0 && order != 1.0 && order != 2.0) throw InputError("position_order", "must be 0, 1 or 2");
   s.numerics.position_order = static_cast<int>(order);
   const double su = v.at("strain_update");
-  if (su != 0.0 && su != 1.0) throw InputError("strain_update", "must be 0 (USL) or 1 (MUSL)");
-  s.numerics.musl = su == 1.0;
+  if (su != 0.0 && su != 1.0 && su != 2.0) throw InputError("strain_update", "must be 0 (USL), 1 (MUSL) or 2 (blend)");
+  s.numerics.musl = su >= 1.0;
+  s.numerics.blend = su == 2.0;
+  const double rc = v.at("musl_recontact");
+  if (rc != 0.0 && rc != 1.0) throw InputError("musl_recontact", "must be 0 or 1");
+  s.numerics.musl_recontact = rc == 1.0;
   s.numerics.cfl = v.at("cfl");
   s.numerics.threads = static_cast<int>(v.at("threads"));
   s.particles_through_chip = v.at("particles_through_chip");
@@ -278,9 +287,18 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   int snap_done = 0;
   const auto t0 = std::chrono::steady_clock::now();
   double next_progress = 0.0;
+  // released energy (total and mode I) when the steady window opens, for the steady-state mode mix
+  const double t_window = v.at("steady_start_fraction") * T;
+  bool window_open = false;
+  double e_at_window = 0.0, eI_at_window = 0.0;
   const long max_steps = static_cast<long>(std::ceil(T / pb.dt())) + 1;
   for (long k = 0; k < max_steps && pb.time() < T - 0.5 * pb.dt(); ++k) {
     pb.step();
+    if (!window_open && pb.time() >= t_window - 0.5 * pb.dt()) {
+      window_open = true;
+      e_at_window = pb.released_energy();
+      eI_at_window = e_at_window > 0.0 ? pb.mode1_fraction() * e_at_window : 0.0;
+    }
     const ContactForces& f = pb.contact_forces();
     acc_c += f.total.x();
     acc_t += -f.total.y();
@@ -350,11 +368,31 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   mean_std(wn, m, sd);
   put("F_nb", m, "N/m");
   put("F_nb_std", sd, "N/m");
+  mean_std(wn, m, sd);
+  put("F_nb_over_bGc", m / s.G_c, "1");
   mean_std(wg, m, sd);
   put("tip_gap", m, "m");
   put("touching", m < dx ? 1.0 : 0.0, "1");
+  {
+    std::size_t nt = 0;
+    for (double g : wg) nt += g < dx ? 1 : 0;
+    put("touching_fraction", wg.empty() ? std::nan("") : static_cast<double>(nt) / static_cast<double>(wg.size()),
+        "1");
+  }
+  {  // Williams' scaling and the friction parameter of Eq. 12
+    const double E = s.material.youngs(), nu = s.material.poisson();
+    const double Eprime = E / (1.0 - nu * nu);
+    put("h_star", s.material.sigma_y0 * s.material.sigma_y0 * s.h / (2.0 * Eprime * s.G_c), "1");
+    const double ta = std::tan(s.rake);
+    put("Z", (s.mu - ta) / (1.0 + s.mu * ta), "1");
+  }
   put("mode1_fraction", pb.mode1_fraction(), "1");
   put("released_energy", pb.released_energy(), "J/m");
+  {
+    const double e = pb.released_energy();
+    const double eI = e > 0.0 ? pb.mode1_fraction() * e : 0.0;
+    put("mode1_fraction_steady", e - e_at_window > 0.0 ? (eI - eI_at_window) / (e - e_at_window) : std::nan(""), "1");
+  }
   put("particles", static_cast<double>(pb.size()), "1");
   put("steps", static_cast<double>(pb.steps()), "1");
   put("dt", pb.dt(), "s");
@@ -381,6 +419,38 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
     const DomainCoverage cov = domain_coverage(px, py, fxx, fxy, fyx, fyy, use, s.h / std::lround(s.particles_through_chip));
     put("chip_domain_gap_fraction", cov.gap_fraction, "1");
     put("chip_domain_overlap_fraction", cov.overlap_fraction, "1");
+    // chip curling (Fig 17): direction of the deformed image F e_x of the originally horizontal
+    // material fibres (the chip's layers). Per reference column of the material above the crack
+    // (width one particle), the circular mean of the unit vectors F e_x / |F e_x|; the angles are
+    // unwrapped from uncut material (2h ahead of the crack tip, angle ~0) back along the chip to its
+    // leading end, so turns beyond 180 deg are counted. Reported: minus the mean unwrapped angle of
+    // the columns that started within h of the left edge (curling turns the layers clockwise).
+    const double psz = s.h / std::lround(s.particles_through_chip);
+    const double xlast = std::min(tip + 2.0 * s.h, s.width_factor * s.h);
+    const int ncol = std::max(1, static_cast<int>(std::ceil(xlast / psz)));
+    std::vector<double> cs(static_cast<std::size_t>(ncol), 0.0), sn(static_cast<std::size_t>(ncol), 0.0);
+    for (std::size_t p = 0; p < n; ++p) {
+      if (pb.rigid(p) || !pb.above_crack(p)) continue;
+      const int c = static_cast<int>(std::floor(pb.reference_position(p).x() / psz));
+      const double len = std::hypot(fxx[p], fyx[p]);
+      if (c < 0 || c >= ncol || len <= 0.0) continue;
+      cs[static_cast<std::size_t>(c)] += fxx[p] / len;
+      sn[static_cast<std::size_t>(c)] += fyx[p] / len;
+    }
+    double prev = 0.0, end_sum = 0.0;
+    int end_n = 0;
+    for (int c = ncol - 1; c >= 0; --c) {
+      const auto k = static_cast<std::size_t>(c);
+      if (cs[k] == 0.0 && sn[k] == 0.0) continue;
+      double a = std::atan2(sn[k], cs[k]);
+      a += 2.0 * M_PI * std::round((prev - a) / (2.0 * M_PI));  // nearest branch to the previous column
+      prev = a;
+      if ((c + 0.5) * psz <= s.h) {
+        end_sum += a;
+        ++end_n;
+      }
+    }
+    put("chip_end_rotation", end_n > 0 ? -end_sum / end_n : std::nan(""), "rad");
   }
   out.notes.push_back("F_c, F_t: force of the tool on the material per unit width (F_t positive pushing the "
                       "material down, the paper's sign); averages over " +
@@ -410,9 +480,16 @@ SolverSpec cutting_solver_spec() {
       {"F_t_std", Dim::force_per_width, "std of F_t"},
       {"F_nb", Dim::force_per_width, "steady bottom-face (rubbing) normal force"},
       {"F_nb_std", Dim::force_per_width, "std of F_nb"},
+      {"F_nb_over_bGc", Dim::dimensionless, "F_nb / (b G_c), the rubbing force of Fig. 10"},
       {"tip_gap", Dim::length, "mean crack-tip minus tool-tip x in the steady window"},
-      {"touching", Dim::dimensionless, "1 when the tool touches the crack tip"},
-      {"mode1_fraction", Dim::dimensionless, "fraction of released energy in mode I"},
+      {"touching", Dim::dimensionless, "1 when the tool touches the crack tip (mean gap below one cell)"},
+      {"touching_fraction", Dim::dimensionless, "fraction of steady-window outputs with the gap below one cell"},
+      {"h_star", Dim::dimensionless, "Williams' dimensionless depth sigma_y0^2 h / (2 E' G_c), E' = E/(1 - nu^2)"},
+      {"Z", Dim::dimensionless, "(mu - tan alpha) / (1 + mu tan alpha), the abscissa of Fig. 16"},
+      {"chip_end_rotation", Dim::angle, "clockwise turn of the chip layers (F e_x, unwrapped along the chip from uncut material) at the chip's leading end: 0 uncut, 90 deg - alpha for a straight chip on the rake face, 360 deg for a full curl"},
+      {"mode1_fraction", Dim::dimensionless, "fraction of released energy in mode I (all segments failed in the run)"},
+      {"mode1_fraction_steady", Dim::dimensionless,
+       "fraction of released energy in mode I, segments failed in the steady window (t >= steady_start_fraction T)"},
       {"released_energy", Dim::force_per_width, "cohesive energy released per unit width (J/m)"},
       {"particles", Dim::dimensionless, "number of particles"},
       {"steps", Dim::dimensionless, "time steps"},

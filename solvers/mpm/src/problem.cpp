@@ -96,6 +96,7 @@ void MpmProblem::setup() {
   bscratch_.assign(np, 0);
   sscratch_.assign(np, 0);
   iscratch_.assign(np, 0);
+  lusl_.assign(cfg_.numerics.musl && cfg_.numerics.blend ? 4 * np : 0, 0.0);
 
   nodes_.assign(kFields * static_cast<std::size_t>(nn_), NodeData{});
   tbuf_.assign(static_cast<std::size_t>(nthreads_), std::vector<NodeData>(nodes_.size(), NodeData{}));
@@ -517,6 +518,7 @@ void MpmProblem::grid_to_particles() {
   const double beta = cfg_.numerics.pic_fraction;
   const int order = cfg_.numerics.position_order;
   const bool musl = cfg_.numerics.musl;
+  const bool blend = musl && cfg_.numerics.blend;
   const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
   const auto nnz = static_cast<std::size_t>(nn_);
 #pragma omp parallel for schedule(static) num_threads(nthreads_)
@@ -561,6 +563,12 @@ void MpmProblem::grid_to_particles() {
     vy_[p] = vnew.y();
     if (!musl) {  // USL: gradient of the updated grid velocities
       update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vnew_, idx));
+    } else if (blend) {  // keep the USL gradient for the blended update below
+      const Eigen::Matrix2d L = velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vnew_, idx);
+      lusl_[4 * p] = L(0, 0);
+      lusl_[4 * p + 1] = L(0, 1);
+      lusl_[4 * p + 2] = L(1, 0);
+      lusl_[4 * p + 3] = L(1, 1);
     }
   }
   rigid_disp_ += V * dt;
@@ -574,7 +582,14 @@ void MpmProblem::grid_to_particles() {
       return fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz +
              static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_);
     };
-    update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vstrain_, idx));
+    Eigen::Matrix2d L = velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vstrain_, idx);
+    if (blend) {
+      L(0, 0) = 0.5 * (L(0, 0) + lusl_[4 * p]);
+      L(0, 1) = 0.5 * (L(0, 1) + lusl_[4 * p + 1]);
+      L(1, 0) = 0.5 * (L(1, 0) + lusl_[4 * p + 2]);
+      L(1, 1) = 0.5 * (L(1, 1) + lusl_[4 * p + 3]);
+    }
+    update_strain(p, L);
   }
 }
 
@@ -631,7 +646,7 @@ void MpmProblem::remap_momenta() {
         has[f] = nd.m > mmin_;
         pm[f] = has[f] ? Eigen::Vector2d(nd.px, nd.py) : Eigen::Vector2d::Zero();
       }
-      resolve_contacts(n, pm, has, V, imp, impb);
+      if (cfg_.numerics.musl_recontact) resolve_contacts(n, pm, has, V, imp, impb);
       const int fm = fixed_[n];
       for (int f = 0; f < 2; ++f) {
         const std::size_t k = static_cast<std::size_t>(f) * nnz + n;

@@ -34,6 +34,13 @@ struct Numerics {
   // particle momenta are re-extrapolated to the grid with the same shape functions, contact and
   // boundary conditions re-applied, and L taken from those velocities: NairnMPM's strain-last).
   bool musl = false;
+  // Experimental (with musl = true): L = (L_USL + L_MUSL)/2, half from the updated grid velocities
+  // and half from the re-extrapolated momenta. Not NairnMPM's USAVG (which splits the step into a
+  // strain-first and a strain-last half); used to bracket the touching/bending transition.
+  bool blend = false;
+  // Diagnostic (with musl = true): false skips the contact re-applied to the re-extrapolated
+  // momenta (boundary conditions are still applied), to separate MUSL's two ingredients.
+  bool musl_recontact = true;
   double cfl = 0.4;           // dt = cfl * dx / c_p
   int sort_interval = 50;     // steps between particle sorts by cell (0 = never)
   double min_mass_fraction = 1e-8;  // nodes lighter than this times a particle mass are empty
@@ -199,6 +206,7 @@ private:
   std::vector<double> Fxx_, Fxy_, Fyx_, Fyy_;
   std::vector<double> bxx_, bxy_, byy_, bzz_;  // isochoric elastic left Cauchy-Green
   std::vector<double> txx_, txy_, tyy_, tzz_;  // Kirchhoff stress
+  std::vector<double> lusl_;                   // per-step scratch: USL velocity gradient (blend)
   std::vector<std::uint8_t> rigid_, side_, frozen_;
   std::vector<std::size_t> id_;
   // shape cache: base nodes, 1D weights and derivatives, field of each of the 9 nodes

@@ -12,6 +12,7 @@ import html
 import json
 import math
 import os
+import re
 import sys
 
 os.environ.setdefault("MPLBACKEND", "Agg")
@@ -49,6 +50,12 @@ def convert(values, from_unit, to_unit):
     fa, oa = UNITS.get(from_unit, (1, 0))
     fb, ob = UNITS.get(to_unit, (1, 0))
     return (np.asarray(values) * fa + oa - ob) / fb
+
+
+def axis_unit(label, default):
+    """The unit in a trailing '(unit)' of an axis label, if it is one of UNITS; else `default`."""
+    m = re.search(r"\(([^()]*)\)\s*$", label or "")
+    return m.group(1) if m and m.group(1) in UNITS else default
 
 
 def read_reference(path):
@@ -140,7 +147,10 @@ def draw_plot(case, plot, root, outdir):
             snap = g[keys[int(plot.get("snapshot", -1))]]
             field = plot.get("field")
             c = snap[field][()] if field in snap else None
-            sc = ax.scatter(snap["x"][()] * 1e3, snap["y"][()] * 1e3, c=c, s=plot.get("size", 2),
+            # snapshot positions are stored in metres; draw them in the unit named in the axis label
+            sx = convert(snap["x"][()], "m", axis_unit(plot.get("xlabel", ""), "mm"))
+            sy = convert(snap["y"][()], "m", axis_unit(plot.get("ylabel", ""), "mm"))
+            sc = ax.scatter(sx, sy, c=c, s=plot.get("size", 2),
                             cmap=plot.get("cmap", "Greys"), marker="s", linewidths=0)
             if c is not None:
                 fig.colorbar(sc, ax=ax, label=field)

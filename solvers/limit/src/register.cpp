@@ -1,6 +1,7 @@
 #include "cutbench/limit/register.hpp"
 
 #include <limits>
+#include <utility>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -44,14 +45,18 @@ int as_int(const Values& v, const std::string& name) {
   return static_cast<int>(x);
 }
 
+// solve_limit with its wall time in seconds (assembly included).
+std::pair<LimitSolution, double> timed_solve(const LimitModel& m) {
+  const auto t0 = std::chrono::steady_clock::now();
+  LimitSolution sol = solve_limit(m);
+  return {std::move(sol), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
+}
+
 // Common outputs: solver statistics and a node snapshot with the velocity field.
 void add_solver_stats(RunOutput& out, const LimitSolution& s, double seconds) {
-  out.scalars["iterations"] = s.socp.iterations;
-  out.scalar_units["iterations"] = "1";
-  out.scalars["solve_time"] = seconds;
-  out.scalar_units["solve_time"] = "s";
-  out.scalars["kkt_dimension"] = s.socp.kkt_dim;
-  out.scalar_units["kkt_dimension"] = "1";
+  out.set_scalar("iterations", s.socp.iterations, "1");
+  out.set_scalar("solve_time", seconds, "s");
+  out.set_scalar("kkt_dimension", s.socp.kkt_dim, "1");
   out.notes.push_back("SOCP status: " + to_string(s.socp.status) + (s.socp.message.empty() ? "" : " (" + s.socp.message + ")"));
 }
 
@@ -117,17 +122,12 @@ SolverSpec strip_spec() {
     const double w = v.at("width"), k = v.at("k");
     LimitModel m = strip_tension_model(v.at("length") / w, 1.0, as_int(v, "nx"), as_int(v, "ny"));
     if (progress) progress(0.0, "solving");
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto sol = solve_limit(m);
-    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto [sol, dt] = timed_solve(m);
     RunOutput out;
     const double load = sol.collapse * k * w;
-    out.scalars["collapse_load"] = load;
-    out.scalar_units["collapse_load"] = "N/m";
-    out.scalars["exact_load"] = 2.0 * k * w;
-    out.scalar_units["exact_load"] = "N/m";
-    out.scalars["rel_error"] = std::abs(load / (2.0 * k * w) - 1.0);
-    out.scalar_units["rel_error"] = "1";
+    out.set_scalar("collapse_load", load, "N/m");
+    out.set_scalar("exact_load", 2.0 * k * w, "N/m");
+    out.set_scalar("rel_error", std::abs(load / (2.0 * k * w) - 1.0), "1");
     add_solver_stats(out, sol, dt);
     add_snapshot(out, m, sol, w, 1.0);
     if (progress) progress(1.0, "done");
@@ -153,21 +153,14 @@ SolverSpec punch_spec() {
     const double B = v.at("half_width"), k = v.at("k");
     LimitModel m = prandtl_punch_model(1.0, as_int(v, "n"), v.at("grading"));
     if (progress) progress(0.0, "solving");
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto sol = solve_limit(m);
-    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto [sol, dt] = timed_solve(m);
     RunOutput out;
     const double pk = sol.collapse;  // power for unit velocity over the half-width B = 1
-    out.scalars["pressure"] = pk * k;
-    out.scalar_units["pressure"] = "Pa";
-    out.scalars["pressure_over_k"] = pk;
-    out.scalar_units["pressure_over_k"] = "1";
-    out.scalars["exact_over_k"] = 2.0 + kPi;
-    out.scalar_units["exact_over_k"] = "1";
-    out.scalars["rel_error"] = std::abs(pk / (2.0 + kPi) - 1.0);
-    out.scalar_units["rel_error"] = "1";
-    out.scalars["elements"] = m.mesh.num_elements();
-    out.scalar_units["elements"] = "1";
+    out.set_scalar("pressure", pk * k, "Pa");
+    out.set_scalar("pressure_over_k", pk, "1");
+    out.set_scalar("exact_over_k", 2.0 + kPi, "1");
+    out.set_scalar("rel_error", std::abs(pk / (2.0 + kPi) - 1.0), "1");
+    out.set_scalar("elements", m.mesh.num_elements(), "1");
     add_solver_stats(out, sol, dt);
     add_snapshot(out, m, sol, B, 1.0);
     if (progress) progress(1.0, "done");
@@ -193,16 +186,11 @@ SolverSpec block_spec() {
     const double k = v.at("k"), W = v.at("width"), H = v.at("height");
     LimitModel m = frictional_block_model(1.0, H / W, v.at("q") / k, v.at("mu"), as_int(v, "nx"), as_int(v, "ny"));
     if (progress) progress(0.0, "solving");
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto sol = solve_limit(m);
-    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto [sol, dt] = timed_solve(m);
     RunOutput out;
-    out.scalars["force"] = sol.collapse * (H / W) * k * W;
-    out.scalar_units["force"] = "N/m";
-    out.scalars["sliding_force"] = v.at("mu") * v.at("q") * W;
-    out.scalar_units["sliding_force"] = "N/m";
-    out.scalars["shear_force"] = k * W;
-    out.scalar_units["shear_force"] = "N/m";
+    out.set_scalar("force", sol.collapse * (H / W) * k * W, "N/m");
+    out.set_scalar("sliding_force", v.at("mu") * v.at("q") * W, "N/m");
+    out.set_scalar("shear_force", k * W, "N/m");
     add_solver_stats(out, sol, dt);
     add_snapshot(out, m, sol, W, 1.0);
     out.notes.push_back("exact only while mu q < k and the block does not tip or crush at the toe (W/H moderate)");
@@ -324,10 +312,7 @@ SolverSpec cutting_spec() {
     }
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     RunOutput out;
-    auto put = [&](const std::string& name, double value, const std::string& unit) {
-      out.scalars[name] = value;
-      out.scalar_units[name] = unit;
-    };
+    auto put = [&](const std::string& name, double value, const std::string& unit) { out.set_scalar(name, value, unit); };
     put("cutting_force", r.fc_bar * k * t1 * w, "N");
     put("feed_force", r.ff_bar * k * t1 * w, "N");
     put("fc_bar", r.fc_bar, "1");

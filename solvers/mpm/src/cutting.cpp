@@ -353,10 +353,7 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
     }
   }
   double m, sd;
-  auto put = [&](const std::string& name, double value, const std::string& unit) {
-    out.scalars[name] = value;
-    out.scalar_units[name] = unit;
-  };
+  auto put = [&](const std::string& name, double value, const std::string& unit) { out.set_scalar(name, value, unit); };
   mean_std(wc, m, sd);
   put("F_c", m, "N/m");
   put("F_c_std", sd, "N/m");

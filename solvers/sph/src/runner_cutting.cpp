@@ -484,10 +484,7 @@ SolverSpec detail::cutting_inputs_spec() {
         {"surface_lambda", in.thermal.surface.lambda_interior}, {"h_over_dx", in.h_over_dx},
     };
     RunOutput out;
-    for (const auto& it : items) {
-      out.scalars[it.name] = v.at(it.name);
-      out.scalar_units[it.name] = it.unit;
-    }
+    for (const auto& it : items) out.set_scalar(it.name, v.at(it.name), it.unit);
     // consistency of the runner's own values that must agree between the solid and the heat model
     if (in.thermal.heat.density != in.material.density)
       throw NumericalError("sph_cutting_inputs: mechanical and thermal densities differ");

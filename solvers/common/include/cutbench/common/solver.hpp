@@ -51,6 +51,12 @@ struct RunOutput {
   Values scalars;                              // e.g. steady F_c, transition flags
   std::map<std::string, std::string> scalar_units;
   std::vector<std::string> notes;              // assumptions and warnings, shown in the report
+
+  // One scalar result with its unit (both maps stay in step).
+  void set_scalar(const std::string& name, double value, const std::string& unit) {
+    scalars[name] = value;
+    scalar_units[name] = unit;
+  }
 };
 
 using ProgressFn = std::function<void(double fraction, const std::string& message)>;

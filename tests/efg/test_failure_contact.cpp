@@ -128,6 +128,78 @@ BOOST_AUTO_TEST_CASE(modes_thresholds_and_degradation) {
   }
 }
 
+// Mode-dependent degradation (Camanho & Matthews 1999 / Tserpes et al. 2002 factors): the stress
+// of a single homogeneous state after failure equals the stiffness with the stated factors times
+// the strain, and the sign of the failing stress selects the tension or compression factor.
+BOOST_AUTO_TEST_CASE(mode_factor_degradation) {
+  const Orthotropic m;
+  const Discretisation d = rectangle(0.004, 0.002, 9, 5, 2.5, 0.2, 1);
+  ExplicitOptions opt;
+  opt.kinematics = Kinematics::small_strain;
+  opt.failure.enabled = true;
+  opt.failure.criterion = an::Criterion::max_stress;
+  opt.failure.lamina = gfrp_lamina();
+  opt.failure.degradation = Degradation::mode_factors;
+  const Eigen::Matrix3d Q = m.Q();
+  auto scaled = [&](double kE1, double kE2, double kG, double knu) {
+    Orthotropic o = m;
+    o.E1 *= kE1;
+    o.E2 *= kE2;
+    o.G12 *= kG;
+    o.nu12 *= knu;
+    return o;
+  };
+  struct Case {
+    const char* name;
+    double theta, sign, strength;  // load along x: material 1 (theta 0) or 2 (theta 90 deg)
+    int mode;
+    Orthotropic expected;
+  };
+  const Case cases[4] = {
+      {"fibre tension", 0.0, 1.0, 697.8e6, fibre_damage, scaled(0.07, 0.07, 0.07, 0.07)},
+      {"fibre compression", 0.0, -1.0, 443.76e6, fibre_damage, scaled(0.14, 0.14, 0.14, 0.14)},
+      {"matrix tension", kPi / 2, 1.0, 89.7216e6, matrix_damage, scaled(1.0, 0.2, 0.2, 1.0)},
+      {"matrix compression", kPi / 2, -1.0, 148.33e6, matrix_damage, scaled(1.0, 0.4, 0.4, 1.0)},
+  };
+  for (const Case& c : cases) {
+    ExplicitEFG s(d, m, c.theta, opt);
+    const bool fibre = c.mode == fibre_damage;
+    // Uniaxial stress along x before failure: lateral strain -Q12/Q22 (fibre) or -Q12/Q11 (matrix).
+    const double Ex = fibre ? m.E1 : m.E2, r = fibre ? -Q(0, 1) / Q(1, 1) : -Q(0, 1) / Q(0, 0);
+    const double e = c.sign * 1.01 * c.strength / Ex;
+    s.set_displacement(homogeneous(d, e, r * e, 0.0));
+    const auto dmg = s.damage(0);
+    const auto comp = s.compressive(0);
+    const Eigen::Vector3d eps(e, r * e, 0.0);
+    const Eigen::Vector3d expected = c.expected.Qbar(c.theta) * eps;
+    const double err = (s.pk2(0) - expected).norm() / expected.norm();
+    BOOST_TEST_MESSAGE("mode factors, " << c.name << ": sigma_x " << s.pk2(0)(0) << " Pa, expected "
+                                        << expected(0) << " (undamaged " << (m.Qbar(c.theta) * eps)(0)
+                                        << "), relative error " << err);
+    BOOST_TEST(dmg[c.mode] == 1.0, c.name);
+    BOOST_TEST(dmg[fibre ? matrix_damage : fibre_damage] == 0.0, c.name);
+    BOOST_TEST(static_cast<int>(comp[fibre ? 0 : 1]) == (c.sign < 0 ? 1 : 0), c.name);
+    BOOST_TEST(err < 1e-10, c.name);
+  }
+  // Several failed modes: the rules apply in sequence (factors multiply); interface: G12, nu12
+  // times the residual.
+  {
+    ExplicitEFG s(d, m, 0.3, opt);
+    const Eigen::Matrix3d K = s.degraded_stiffness({1.0, 1.0, 1.0}, {1, 0});
+    const Orthotropic o = scaled(0.14, 0.14 * 0.2, 0.14 * 0.2 * 0.01, 0.14 * 0.01);
+    BOOST_TEST((K - o.Qbar(0.3)).norm() < 1e-12 * o.Qbar(0.3).norm());
+  }
+  // The sudden scheme is unchanged: failed moduli times `residual`.
+  {
+    ExplicitOptions so = opt;
+    so.failure.degradation = Degradation::sudden;
+    ExplicitEFG s(d, m, 0.3, so);
+    const Eigen::Matrix3d K = s.degraded_stiffness({1.0, 0.0, 0.0}, {1, 0});
+    const Orthotropic o = scaled(0.01, 1.0, 0.01, 0.01);
+    BOOST_TEST((K - o.Qbar(0.3)).norm() < 1e-12 * o.Qbar(0.3).norm());
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(contact)

@@ -32,6 +32,7 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   opt.failure.criterion = s.criterion;
   opt.failure.lamina = s.lamina;
   opt.failure.residual = s.residual;
+  opt.failure.degradation = s.degradation;
   opt.erosion = s.erosion;
   // Fibres along (cos theta, sin theta) with the tool moving +x: for 0 < theta < 90 deg they rise
   // ahead of the tool from the edge to the free surface, the path along which the paper's chips

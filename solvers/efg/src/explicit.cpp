@@ -157,16 +157,39 @@ bool ExplicitEFG::update_damage(GP& q) const {
   for (int k = 0; k < 3; ++k) {
     if (q.damage[k] < 1.0 && idx[k] >= 1.0) {
       q.damage[k] = 1.0;
+      if (k == fibre_damage) q.compressive[0] = ps.s11 < 0.0;
+      if (k == matrix_damage) q.compressive[1] = ps.s22 < 0.0;
       changed = true;
     }
   }
-  if (changed) q.Qd = degraded_stiffness(q.damage);
+  if (changed) q.Qd = degraded_stiffness(q.damage, q.compressive);
   return changed;
 }
 
-Eigen::Matrix3d ExplicitEFG::degraded_stiffness(const std::array<double, 3>& damage) const {
+Eigen::Matrix3d ExplicitEFG::degraded_stiffness(const std::array<double, 3>& damage,
+                                                const std::array<char, 2>& compressive) const {
   Orthotropic m = mat_;
   const double r = opt_.failure.residual;
+  if (opt_.failure.degradation == Degradation::mode_factors) {
+    const ModeFactors& f = opt_.failure.factors;
+    if (damage[fibre_damage] > 0.0) {
+      const double k = compressive[0] ? f.fibre_compression : f.fibre_tension;
+      m.E1 *= k;
+      m.E2 *= k;
+      m.G12 *= k;
+      m.nu12 *= k;
+    }
+    if (damage[matrix_damage] > 0.0) {
+      const double k = compressive[1] ? f.matrix_compression : f.matrix_tension;
+      m.E2 *= k;
+      m.G12 *= k;
+    }
+    if (damage[interface_damage] > 0.0) {
+      m.G12 *= r;
+      m.nu12 *= r;
+    }
+    return m.Qbar(theta_);
+  }
   if (damage[fibre_damage] > 0.0) {
     m.E1 *= r;
     m.G12 *= r;
@@ -181,9 +204,11 @@ Eigen::Matrix3d ExplicitEFG::degraded_stiffness(const std::array<double, 3>& dam
   return m.Qbar(theta_);
 }
 
-void ExplicitEFG::set_damage(std::size_t g, const std::array<double, 3>& damage) {
+void ExplicitEFG::set_damage(std::size_t g, const std::array<double, 3>& damage,
+                             const std::array<char, 2>& compressive) {
   gp_.at(g).damage = damage;
-  gp_[g].Qd = degraded_stiffness(damage);
+  gp_[g].compressive = compressive;
+  gp_[g].Qd = degraded_stiffness(damage, compressive);
 }
 
 void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {

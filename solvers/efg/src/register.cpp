@@ -175,6 +175,8 @@ void register_solvers(SolverRegistry& registry) {
                  p("mu", Dim::dimensionless, "rake-face friction coefficient (assumption)", 0.3, 0, 2),
                  p("clearance", Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
                  p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1),
+                 p("degradation", Dim::dimensionless,
+                   "0: sudden (failed moduli x residual), 1: mode factors of Camanho-Matthews/Tserpes", 0, 0, 1),
                  p("erosion", Dim::dimensionless, "separation: 0 none, 1 fibre and matrix failed, 2 either", 1, 0, 2),
                  p("visibility", Dim::dimensionless, "visibility criterion across the notch and the cut line (0/1)", 1, 0, 1),
                  p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99),
@@ -250,6 +252,7 @@ void register_solvers(SolverRegistry& registry) {
     s.mu = v.at("mu");
     s.clearance = v.at("clearance");
     s.residual = v.at("residual");
+    s.degradation = static_cast<Degradation>(static_cast<int>(std::lround(v.at("degradation"))));
     s.erosion = static_cast<Erosion>(static_cast<int>(std::lround(v.at("erosion"))));
     s.visibility = v.at("visibility") > 0.5;
     s.drop = v.at("drop");

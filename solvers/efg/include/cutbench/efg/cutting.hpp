@@ -36,6 +36,7 @@ struct CuttingSetup {
   double ramp_transits = 50.0;
   double mu = 0.3;               // rake-face friction (paper: function of theta after [63], not given)
   double residual = 0.01;
+  Degradation degradation = Degradation::sudden;  // see FailureOptions
   double cfl = 0.5;
   Erosion erosion = Erosion::fibre_and_matrix;
   bool visibility = true;

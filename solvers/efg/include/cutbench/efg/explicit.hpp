@@ -41,11 +41,29 @@ enum class Kinematics { small_strain, total_lagrangian, updated_lagrangian };
 // otherwise (sigma22+/S_sigma)^2 + (tau12/S_tau)^2 with the interface strengths of Table 1 when
 // given (> 0), else none. When the stress of a Gauss point gains damage it is recomputed with the
 // degraded stiffness in the same step (the paper's "trial stress", section 3.6).
+//
+// Degradation schemes (solvers/efg/README.md, "Progressive failure"):
+//  - sudden: the table above, every failed modulus times `residual`;
+//  - mode_factors: mode- and sign-dependent factors of Camanho & Matthews (1999) as tabulated by
+//    Tserpes et al. (2002), the selective sudden degradation used in FE models of FRP cutting:
+//      fibre tension (sigma11 >= 0 at failure)    -> E1, E2, G12, nu12 x 0.07
+//      fibre compression                          -> E1, E2, G12, nu12 x 0.14
+//      matrix tension (sigma22 >= 0 at failure)   -> E2, G12 x 0.2
+//      matrix compression                         -> E2, G12 x 0.4
+//      interface (fibre-matrix shear)             -> G12, nu12 x `residual` (0 in the source)
+//    rules of several failed modes are applied in sequence (factors multiply).
+enum class Degradation { sudden = 0, mode_factors = 1 };
+struct ModeFactors {
+  double fibre_tension = 0.07, fibre_compression = 0.14;
+  double matrix_tension = 0.2, matrix_compression = 0.4;
+};
 struct FailureOptions {
   bool enabled = false;
   analytic::Criterion criterion = analytic::Criterion::larc02;
   analytic::Lamina lamina;
   double residual = 0.01;  // degraded fraction of a failed modulus
+  Degradation degradation = Degradation::sudden;
+  ModeFactors factors;     // mode_factors scheme
   double S_sigma = 0.0;    // interface normal strength (Table 1), 0: unused
   double S_tau = 0.0;      // interface shear strength (Table 1), 0: unused
 };
@@ -148,8 +166,15 @@ public:
   Vec2 gauss_position(std::size_t g) const;
   std::array<double, 3> damage(std::size_t g) const { return gp_[g].damage; }
   // Imposes damage flags on Gauss point g (pre-failed material, tests); the stiffness is degraded
-  // as for failure in the run, and erosion applies at the next force evaluation.
-  void set_damage(std::size_t g, const std::array<double, 3>& damage);
+  // as for failure in the run, and erosion applies at the next force evaluation. `compressive`:
+  // fibre / matrix failed in compression (mode_factors scheme).
+  void set_damage(std::size_t g, const std::array<double, 3>& damage,
+                  const std::array<char, 2>& compressive = {0, 0});
+  // Fibre / matrix of Gauss point g failed in compression (sign of sigma11 / sigma22 at failure).
+  std::array<char, 2> compressive(std::size_t g) const { return gp_[g].compressive; }
+  // Degraded x-y stiffness for the given damage state (the undamaged Qbar when none).
+  Eigen::Matrix3d degraded_stiffness(const std::array<double, 3>& damage,
+                                     const std::array<char, 2>& compressive = {0, 0}) const;
   // Recomputes stresses and internal forces at the current positions (no time advance).
   void refresh() { compute_internal_forces(); }
   double kinetic_energy() const;
@@ -165,12 +190,12 @@ private:
     Eigen::Vector3d E = Eigen::Vector3d::Zero(), S = Eigen::Vector3d::Zero();
     ShapeData sd;                    // shape functions on the reference configuration
     std::array<double, 3> damage = {0.0, 0.0, 0.0};  // fibre, matrix, interface
+    std::array<char, 2> compressive = {0, 0};         // fibre, matrix failed in compression
     Eigen::Matrix3d Qd = Eigen::Matrix3d::Zero();    // degraded x-y stiffness (when damaged)
     bool eroded = false;                             // separated: carries no stress
   };
   void update_release();
   bool update_damage(GP& q) const;  // true when a new mode failed
-  Eigen::Matrix3d degraded_stiffness(const std::array<double, 3>& damage) const;
   void apply_contact(double dt, std::vector<Vec2>& vhalf);
   void compute_internal_forces();
   void update_reference();

@@ -200,6 +200,35 @@ BOOST_AUTO_TEST_CASE(mode_factor_degradation) {
   }
 }
 
+// The cheap bound used to skip LaRC02's fracture-plane search is an upper bound of the searched
+// matrix-compression index, and the fibre index is unchanged when the search is skipped.
+BOOST_AUTO_TEST_CASE(larc02_matrix_compression_bound_holds) {
+  const an::Lamina l = gfrp_lamina();
+  double worst = 1e300;  // smallest bound / index over the sweep (>= 1 required)
+  int n = 0;
+  for (int i = 1; i <= 40; ++i) {
+    for (int j = -40; j <= 40; ++j) {
+      for (double s11 : {-140e6, 0.0, 300e6}) {
+        an::PlaneStress ps;
+        ps.s11 = s11;
+        ps.s22 = -i * 5e6;  // -5 ... -200 MPa
+        ps.t12 = j * 1.5e6;  // -60 ... 60 MPa
+        const an::FailureIndices full = an::larc02_failure(ps, l);
+        const an::FailureIndices fast = an::larc02_failure(ps, l, false);
+        BOOST_TEST(fast.fibre == full.fibre);
+        BOOST_TEST(std::isnan(fast.matrix));
+        const double b = larc02_matrix_compression_bound(ps.s22, ps.t12, l);
+        if (full.matrix > 0.0) {
+          worst = std::min(worst, b / full.matrix);
+          ++n;
+        }
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("LaRC02 matrix-compression bound / searched index: min " << worst << " over " << n << " states");
+  BOOST_TEST(worst >= 1.0);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(contact)

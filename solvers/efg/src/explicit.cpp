@@ -129,6 +129,14 @@ void ExplicitEFG::compute_internal_forces() {
   }
 }
 
+double larc02_matrix_compression_bound(double s22, double t12, const analytic::Lamina& m) {
+  const double ST = analytic::transverse_shear_strength(m.Y_C, m.alpha0);
+  const double eta_T = analytic::larc_eta_T(m.alpha0), eta_L = analytic::larc_eta_L(m.S_L, m.Y_C, m.alpha0);
+  const double a = std::abs(s22);
+  const double tT = a * (0.5 + std::max(0.0, -eta_T)), tL = std::abs(t12) + std::max(0.0, -eta_L) * a;
+  return (tT / ST) * (tT / ST) + (tL / m.S_L) * (tL / m.S_L);
+}
+
 bool ExplicitEFG::update_damage(GP& q) const {
   const FailureOptions& fo = opt_.failure;
   const bool has_interface = fo.criterion == analytic::Criterion::max_stress || (fo.S_sigma > 0.0 && fo.S_tau > 0.0);
@@ -144,7 +152,16 @@ bool ExplicitEFG::update_damage(GP& q) const {
   ps.s11 = s12(0);
   ps.s22 = s12(1);
   ps.t12 = s12(2);
-  const analytic::FailureIndices fi = analytic::failure_indices(fo.criterion, ps, fo.lamina);
+  analytic::FailureIndices fi;
+  if (fo.criterion == analytic::Criterion::larc02) {
+    // The matrix-compression search is needed only while the matrix is intact and the bound does
+    // not exclude failure (with sigma11 < -Y_C LaRC02 uses misalignment-frame stresses: search).
+    const bool search = q.damage[matrix_damage] < 1.0 &&
+                        (ps.s11 < -fo.lamina.Y_C || larc02_matrix_compression_bound(ps.s22, ps.t12, fo.lamina) >= 1.0);
+    fi = analytic::larc02_failure(ps, fo.lamina, search);
+  } else {
+    fi = analytic::failure_indices(fo.criterion, ps, fo.lamina);
+  }
   double interface = 0.0;
   if (!std::isnan(fi.shear)) {
     interface = fi.shear;

@@ -73,6 +73,14 @@ struct FailureOptions {
 // is released: it leaves the model (no internal force, no contact, excluded from the Eq 56 time
 // step, velocity frozen), as the debris of an element-free crack.
 enum class Erosion { none, fibre_and_matrix, fibre_or_matrix };
+
+// Upper bound of the LaRC02 matrix-compression index (sigma22 < 0, fracture plane searched over
+// [0, alpha0]) from |sigma22| and |tau12| alone: with c = cos a, s = sin a,
+//   tau_T = <|s22| c (s - eta_T c)> <= |s22| (1/2 + max(0, -eta_T)),
+//   tau_L = <c (|t12| + eta_L s22 c)> <= |t12| + max(0, -eta_L) |s22|,
+// so the index is at most (tau_T,max/S_T)^2 + (tau_L,max/S_L)^2. Below 1 the costly search can be
+// skipped without changing any failure decision (used by ExplicitEFG; tested against the search).
+double larc02_matrix_compression_bound(double s22, double t12, const analytic::Lamina& m);
 enum DamageMode : int { fibre_damage = 0, matrix_damage = 1, interface_damage = 2 };
 
 // Rigid tool: a convex polygon (counter-clockwise vertices at t = 0) translating at `velocity`,

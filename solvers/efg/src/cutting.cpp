@@ -34,6 +34,7 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   opt.failure.residual = s.residual;
   opt.failure.degradation = s.degradation;
   opt.erosion = s.erosion;
+  opt.collapse_ratio = s.collapse_ratio;
   // Fibres along (cos theta, sin theta) with the tool moving +x: for 0 < theta < 90 deg they rise
   // ahead of the tool from the edge to the free surface, the path along which the paper's chips
   // separate (sections 5.2 and 6).
@@ -252,6 +253,7 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     }
   }
   r.released = solver.released_count();
+  r.collapse_eroded = solver.collapse_eroded_count();
   return r;
 }
 

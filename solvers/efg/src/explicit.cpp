@@ -52,6 +52,15 @@ ExplicitEFG::ExplicitEFG(const Discretisation& d, const Orthotropic& mat, double
   }
   compute_internal_forces();
   for (std::size_t I = 0; I < n; ++I) a_[I] = (fext_[I] - fint_[I]) / mass_[I];
+  {
+    CellList cl;
+    cl.build(X0_, spacing_);
+    dmin0_ = cl.min_pair_distance();
+    if (!std::isfinite(dmin0_)) dmin0_ = spacing_;
+  }
+  if (opt_.collapse_ratio < 0.0 || opt_.collapse_ratio >= 1.0) {
+    throw InputError("collapse_ratio", "must be in [0, 1) (0: off)");
+  }
 }
 
 void ExplicitEFG::add_velocity_bc(int node, int dof, std::function<double(double)> v) {
@@ -328,6 +337,7 @@ void ExplicitEFG::add_opaque_segment(const Segment& s) {
   if (pts.empty()) return;
   auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
   for (std::size_t k = 0; k < ids.size(); ++k) gp_[ids[k]].sd = std::move(sf[k]);
+  node_gp_dirty_ = true;
   update_release();
 }
 
@@ -345,6 +355,7 @@ void ExplicitEFG::update_reference() {
   for (std::size_t g = 0; g < gp_.size(); ++g) pts[g] = gp_[g].xr;
   auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
   for (std::size_t g = 0; g < gp_.size(); ++g) gp_[g].sd = std::move(sf[g]);
+  node_gp_dirty_ = true;
 }
 
 void ExplicitEFG::apply_bcs(double t) {
@@ -367,8 +378,73 @@ double ExplicitEFG::critical_time_step() const {
   return dmin / mat_.wave_speed();
 }
 
+bool ExplicitEFG::erode_collapsed() {
+  const double r = opt_.collapse_ratio * dmin0_;
+  std::vector<int> ids;
+  std::vector<Vec2> pts;
+  for (std::size_t I = 0; I < x_.size(); ++I) {
+    if (active_[I]) {
+      ids.push_back(static_cast<int>(I));
+      pts.push_back(x_[I]);
+    }
+  }
+  CellList cl;
+  cl.build(pts, std::max(spacing_, r));
+  pairs_.clear();
+  cl.pairs_within(r, pairs_);
+  if (pairs_.empty()) return false;
+  if (node_gp_dirty_) {
+    node_gp_start_.assign(x_.size() + 1, 0);
+    for (const auto& q : gp_) {
+      for (int I : q.sd.nodes) ++node_gp_start_[I + 1];
+    }
+    for (std::size_t I = 0; I < x_.size(); ++I) node_gp_start_[I + 1] += node_gp_start_[I];
+    node_gp_.assign(node_gp_start_.back(), 0);
+    std::vector<int> fill(node_gp_start_.begin(), node_gp_start_.end() - 1);
+    for (std::size_t g = 0; g < gp_.size(); ++g) {
+      for (int I : gp_[g].sd.nodes) node_gp_[fill[I]++] = static_cast<int>(g);
+    }
+    node_gp_dirty_ = false;
+  }
+  auto failed = [&](int g) {
+    const GP& q = gp_[g];
+    return q.eroded || q.damage[0] + q.damage[1] + q.damage[2] > 0.0;
+  };
+  bool any = false;
+  for (const auto& pr : pairs_) {
+    for (int I : {ids[pr.first], ids[pr.second]}) {
+      if (!active_[I]) continue;
+      bool all = true;
+      for (int k = node_gp_start_[I]; k < node_gp_start_[I + 1] && all; ++k) all = failed(node_gp_[k]);
+      if (!all) continue;
+      for (int k = node_gp_start_[I]; k < node_gp_start_[I + 1]; ++k) {
+        GP& q = gp_[node_gp_[k]];
+        if (!q.eroded) {
+          q.eroded = true;
+          q.S.setZero();
+          ++ncollapse_;
+        }
+      }
+      active_[I] = 0;  // all its support is eroded: released (update_release confirms)
+      any = true;
+    }
+  }
+  if (any) {
+    update_release();
+    compute_internal_forces();
+    for (std::size_t I = 0; I < x_.size(); ++I) {
+      a_[I] = active_[I] ? Vec2((fext_[I] - fint_[I]) / mass_[I]) : Vec2::Zero();
+    }
+  }
+  return any;
+}
+
 double ExplicitEFG::step() {
-  const double dt = opt_.cfl * critical_time_step();
+  double dt = opt_.cfl * critical_time_step();
+  if (opt_.collapse_ratio > 0.0 && dt < opt_.collapse_ratio * opt_.cfl * dmin0_ / mat_.wave_speed() &&
+      erode_collapsed()) {
+    dt = opt_.cfl * critical_time_step();
+  }
   step(dt);
   return dt;
 }

@@ -178,6 +178,9 @@ void register_solvers(SolverRegistry& registry) {
                  p("degradation", Dim::dimensionless,
                    "0: sudden (failed moduli x residual), 1: mode factors of Camanho-Matthews/Tserpes", 0, 0, 1),
                  p("erosion", Dim::dimensionless, "separation: 0 none, 1 fibre and matrix failed, 2 either", 1, 0, 2),
+                 p("collapse_ratio", Dim::dimensionless,
+                   "collapse erosion: failed material whose nodes come closer than this x the initial spacing is eroded (0: off)",
+                   0, 0, 0.99),
                  p("visibility", Dim::dimensionless, "visibility criterion across the notch and the cut line (0/1)", 1, 0, 1),
                  p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99),
                  p("drop_window", Dim::dimensionless, "steps of the running mean of dt", 200, 1, 1e6),
@@ -206,6 +209,7 @@ void register_solvers(SolverRegistry& registry) {
                  {"sub_matrix_fraction", Dim::dimensionless, "matrix-damaged fraction within one depth below the cut"},
                  {"eroded", Dim::dimensionless, "separated Gauss points"},
                  {"released", Dim::dimensionless, "released nodes"},
+                 {"collapse_eroded", Dim::dimensionless, "Gauss points eroded by the collapse criterion"},
                  {"nodes", Dim::dimensionless, "nodes"},
                  {"gauss_points", Dim::dimensionless, "Gauss points"},
                  {"steps", Dim::dimensionless, "time steps"},
@@ -255,6 +259,7 @@ void register_solvers(SolverRegistry& registry) {
     s.degradation = static_cast<Degradation>(static_cast<int>(std::lround(v.at("degradation"))));
     s.erosion = static_cast<Erosion>(static_cast<int>(std::lround(v.at("erosion"))));
     s.visibility = v.at("visibility") > 0.5;
+    s.collapse_ratio = v.at("collapse_ratio");
     s.drop = v.at("drop");
     s.drop_window = static_cast<int>(std::lround(v.at("drop_window")));
     s.min_travel = v.at("min_travel");
@@ -306,6 +311,7 @@ void register_solvers(SolverRegistry& registry) {
                    {"sub_matrix_fraction", frac(r.sub_matrix, r.sub_gauss)},
                    {"eroded", static_cast<double>(r.eroded)},
                    {"released", static_cast<double>(r.released)},
+                   {"collapse_eroded", static_cast<double>(r.collapse_eroded)},
                    {"nodes", static_cast<double>(r.nodes)},
                    {"gauss_points", ng},
                    {"steps", static_cast<double>(r.steps)},

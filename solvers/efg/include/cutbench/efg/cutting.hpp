@@ -37,6 +37,7 @@ struct CuttingSetup {
   double mu = 0.3;               // rake-face friction (paper: function of theta after [63], not given)
   double residual = 0.01;
   Degradation degradation = Degradation::sudden;  // see FailureOptions
+  double collapse_ratio = 0.0;  // collapse erosion (ExplicitOptions::collapse_ratio), 0: off
   double cfl = 0.5;
   Erosion erosion = Erosion::fibre_and_matrix;
   bool visibility = true;
@@ -77,7 +78,7 @@ struct CuttingResult {
   int nodes = 0;
   double hx = 0.0, hy = 0.0, y_edge = 0.0;
   std::size_t fibre_damaged = 0, matrix_damaged = 0, interface_damaged = 0, gauss = 0;
-  std::size_t eroded = 0, released = 0;
+  std::size_t eroded = 0, released = 0, collapse_eroded = 0;
   // Damage in the chip: Gauss points above the cut line between the rake face at the start and
   // the fibre line through the tool edge at the end of the run (reference configuration).
   std::size_t chip_gauss = 0, chip_fibre = 0, chip_matrix = 0;

@@ -114,6 +114,14 @@ struct ExplicitOptions {
   double thickness = 1.0;   // out-of-plane thickness (m); forces are per this thickness
   FailureOptions failure;
   Erosion erosion = Erosion::none;
+  // Erosion of collapsed failed material (solvers/efg/README.md, "Collapse erosion"): when two
+  // active nodes come closer than `collapse_ratio` x the initial smallest nodal distance (the
+  // Eq 56 step would fall below that fraction of its initial value), each node of the pair whose
+  // supporting Gauss points have all failed (any mode) or are eroded has those Gauss points
+  // eroded, so it is released and leaves the time-step estimate. Intact material is never
+  // eroded: a pair with an intact supporting Gauss point on both nodes keeps the small step.
+  // 0: off.
+  double collapse_ratio = 0.0;
 };
 
 // A prescribed nodal velocity component v(t) (displacement follows by integration).
@@ -152,6 +160,7 @@ public:
   bool released(std::size_t I) const { return !active_[I]; }
   std::size_t released_count() const { return nreleased_; }
   std::size_t eroded_count() const { return neroded_; }
+  std::size_t collapse_eroded_count() const { return ncollapse_; }  // Gauss points eroded by collapse
 
   double critical_time_step() const;  // Eqs 55-56 on the current configuration (active nodes)
   double step();                      // one step at cfl * critical; returns dt
@@ -203,6 +212,7 @@ private:
     bool eroded = false;                             // separated: carries no stress
   };
   void update_release();
+  bool erode_collapsed();           // collapse erosion; true when something was eroded
   bool update_damage(GP& q) const;  // true when a new mode failed
   void apply_contact(double dt, std::vector<Vec2>& vhalf);
   void compute_internal_forces();
@@ -225,7 +235,11 @@ private:
   std::vector<VelocityBC> bcs_;
   std::vector<Segment> opaque_;
   std::vector<char> active_;
-  std::size_t nreleased_ = 0, neroded_ = 0;
+  std::size_t nreleased_ = 0, neroded_ = 0, ncollapse_ = 0;
+  double dmin0_ = 0.0;                        // initial smallest nodal distance
+  std::vector<int> node_gp_start_, node_gp_;  // node -> supporting Gauss points (CSR), on demand
+  bool node_gp_dirty_ = true;
+  std::vector<std::pair<int, int>> pairs_;    // scratch
   bool erosion_changed_ = false;
   mutable std::vector<Vec2> xactive_;  // scratch for the time step (capacity kept)
   double t_ = 0.0;

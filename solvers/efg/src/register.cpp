@@ -176,7 +176,7 @@ void register_solvers(SolverRegistry& registry) {
                  p("clearance", Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
                  p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1),
                  p("degradation", Dim::dimensionless,
-                   "0: sudden (failed moduli x residual), 1: mode factors of Camanho-Matthews/Tserpes", 0, 0, 1),
+                   "0: sudden (failed moduli x residual), 1: mode factors of Camanho-Matthews/Tserpes", 1, 0, 1),
                  p("erosion", Dim::dimensionless, "separation: 0 none, 1 fibre and matrix failed, 2 either", 1, 0, 2),
                  p("collapse_ratio", Dim::dimensionless,
                    "collapse erosion: failed material whose nodes come closer than this x the initial spacing is eroded (0: off)",
@@ -334,7 +334,8 @@ void register_solvers(SolverRegistry& registry) {
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
     out.notes.push_back("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
                         "edge, constant friction, fixed bottom and far end and the time scaling are assumptions; "
-                        "failed (fibre+matrix) Gauss points carry no stress, fully unsupported nodes are released; "
+                        "mode-dependent degradation factors (Camanho & Matthews 1999, Tserpes et al. 2002; "
+                        "degradation = 0: sudden to the residual); failed (fibre+matrix) Gauss points carry no stress, fully unsupported nodes are released; "
                         "visibility across the notch and the cut line behind the edge (solvers/efg/README.md).");
     return out;
   };

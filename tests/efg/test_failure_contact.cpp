@@ -402,6 +402,33 @@ BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(cutting_setup)
 
+BOOST_AUTO_TEST_CASE(rounded_edge_is_tangent_arc) {
+  // Edge radius option: the arc points lie on a circle of the given radius, its end points on the
+  // clearance and rake faces through the sharp edge, tangent to them, and the tool stays convex.
+  const Vec2 E(1e-3, 0.5e-3);
+  const double rho = 20e-6, rake = 0.1, cl = 7.0 * kPi / 180.0;
+  const auto v = edge_vertices(E, rake, cl, rho, 8);
+  BOOST_REQUIRE(v.size() == 9u);
+  const Vec2 u1(-std::sin(rake), std::cos(rake)), u2(-std::cos(cl), std::sin(cl));  // face directions
+  auto dist_line = [&](const Vec2& p, const Vec2& u) { return std::abs(u.x() * (p - E).y() - u.y() * (p - E).x()); };
+  BOOST_TEST(dist_line(v.front(), u2) < 1e-12 * rho);  // on the clearance face
+  BOOST_TEST(dist_line(v.back(), u1) < 1e-12 * rho);   // on the rake face
+  // Circle through all points: centre from the first point along the inward clearance normal.
+  const Vec2 C = v.front() + rho * Vec2(std::sin(cl), std::cos(cl));
+  for (const auto& p : v) BOOST_TEST(std::abs((p - C).norm() - rho) < 1e-12 * rho);
+  BOOST_TEST(std::abs((v.back() - C).dot(u1)) < 1e-12 * rho);  // tangent to the rake face
+  // Convex, counter-clockwise with the rest of the tool polygon.
+  std::vector<Vec2> poly = v;
+  poly.push_back(E + Vec2(-1e-3 * std::tan(rake), 1e-3));
+  poly.push_back(E + Vec2(-1e-3, 1e-3));
+  poly.push_back(E + Vec2(-1e-3, 1e-3 * std::tan(cl)));
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Vec2 a = poly[(k + 1) % poly.size()] - poly[k], b = poly[(k + 2) % poly.size()] - poly[(k + 1) % poly.size()];
+    BOOST_TEST(a.x() * b.y() - a.y() * b.x() > 0.0);
+  }
+  BOOST_TEST(edge_vertices(E, rake, cl, 0.0, 8).size() == 1u);  // sharp edge: E itself
+}
+
 BOOST_AUTO_TEST_CASE(tool_engages_at_gap_over_speed) {
   // Smoke test of the cutting set-up (coarse, 10 um of travel): the tool first touches the
   // workpiece within one step of gap/speed, the workpiece resists the advance (F_c > 0), the

@@ -174,13 +174,14 @@ void register_solvers(SolverRegistry& registry) {
                  p("ramp_transits", Dim::dimensionless, "tool speed ramp, in wave transits of the workpiece height", 50, 0, 1e4),
                  p("mu", Dim::dimensionless, "rake-face friction coefficient (assumption)", 0.3, 0, 2),
                  p("clearance", Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
+                 p("edge_radius", Dim::length, "cutting-edge radius (assumption, not in the paper; 0: sharp)", 0.0, 0, inf),
                  p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1),
                  p("degradation", Dim::dimensionless,
                    "0: sudden (failed moduli x residual), 1: mode factors of Camanho-Matthews/Tserpes", 1, 0, 1),
                  p("erosion", Dim::dimensionless, "separation: 0 none, 1 fibre and matrix failed, 2 either", 1, 0, 2),
                  p("collapse_ratio", Dim::dimensionless,
                    "collapse erosion: failed material whose nodes come closer than this x the initial spacing is eroded (0: off)",
-                   0, 0, 0.99),
+                   0.1, 0, 0.99),
                  p("visibility", Dim::dimensionless, "visibility criterion across the notch and the cut line (0/1)", 1, 0, 1),
                  p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99),
                  p("drop_window", Dim::dimensionless, "steps of the running mean of dt", 200, 1, 1e6),
@@ -256,6 +257,7 @@ void register_solvers(SolverRegistry& registry) {
     s.mu = v.at("mu");
     s.clearance = v.at("clearance");
     s.residual = v.at("residual");
+    s.edge_radius = v.at("edge_radius");
     s.degradation = static_cast<Degradation>(static_cast<int>(std::lround(v.at("degradation"))));
     s.erosion = static_cast<Erosion>(static_cast<int>(std::lround(v.at("erosion"))));
     s.visibility = v.at("visibility") > 0.5;

@@ -173,13 +173,19 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     return false;
   };
   bool path = false;
+  std::size_t ncoll_prev = 0;
   while (solver.time() < t_end) {
     const double dt = solver.step();
     r.dt_min = std::min(r.dt_min, dt);
     if (r.t_contact < 0 && solver.contact_count() > 0) r.t_contact = solver.time();
     const double trav = travel_at(solver.time());
-    // Chip completion: sudden drop of the Eq 56 step below its running mean (section 5.4).
-    if (s.drop > 0.0 && trav >= s.min_travel && dt < (1.0 - s.drop) * ema) {
+    // Chip completion: sudden drop of the Eq 56 step below its running mean (section 5.4). A
+    // collapse-erosion event counts as a drop: it intercepts a step that would have fallen below
+    // collapse_ratio x its initial value.
+    const std::size_t ncoll = solver.collapse_eroded_count();
+    const bool collapse_event = ncoll > ncoll_prev;
+    ncoll_prev = ncoll;
+    if (s.drop > 0.0 && trav >= s.min_travel && (dt < (1.0 - s.drop) * ema || collapse_event)) {
       if (r.travel_first_drop < 0.0) r.travel_first_drop = trav;
       if (!s.completion_guard || path) {
         r.t_complete = solver.time();

@@ -46,7 +46,8 @@ struct CuttingSetup {
   Erosion erosion = Erosion::fibre_and_matrix;
   bool visibility = true;
   // Chip completion (section 5.4): the Eq 56 step falls below (1 - drop) times its running mean
-  // over the last `drop_window` steps; 0 disables the detector (run to `travel`).
+  // over the last `drop_window` steps, or a collapse-erosion event intercepts a step below
+  // collapse_ratio x its initial value; 0 disables the detector (run to `travel`).
   double drop = 0.3;
   int drop_window = 200;
   double min_travel = 0.0;       // no detection before this travel (start-up transient)

@@ -145,7 +145,9 @@ FailureIndices hashin_failure(const PlaneStress& s, const Lamina& m) {
   return r;
 }
 
-FailureIndices larc02_failure(const PlaneStress& s, const Lamina& m) {
+FailureIndices larc02_failure(const PlaneStress& s, const Lamina& m) { return larc02_failure(s, m, true); }
+
+FailureIndices larc02_failure(const PlaneStress& s, const Lamina& m, bool matrix_compression_search) {
   FailureIndices r;
   r.shear = kNaN;
   r.fracture_angle = kNaN;
@@ -187,6 +189,8 @@ FailureIndices larc02_failure(const PlaneStress& s, const Lamina& m) {
   // Matrix modes.
   if (s.s22 >= 0.0) {
     r.matrix = larc_matrix_tension(s.s22, s.t12, m.Y_T, m.S_L, m.g);
+  } else if (!matrix_compression_search) {
+    r.matrix = kNaN;
   } else {
     const bool use_m = s.s11 < -m.Y_C && !kink_degenerate;
     const auto ps = larc_matrix_compression(use_m ? s22m : s.s22, use_m ? t12m : s.t12, ST, m.S_L,

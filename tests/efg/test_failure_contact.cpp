@@ -128,6 +128,107 @@ BOOST_AUTO_TEST_CASE(modes_thresholds_and_degradation) {
   }
 }
 
+// Mode-dependent degradation (Camanho & Matthews 1999 / Tserpes et al. 2002 factors): the stress
+// of a single homogeneous state after failure equals the stiffness with the stated factors times
+// the strain, and the sign of the failing stress selects the tension or compression factor.
+BOOST_AUTO_TEST_CASE(mode_factor_degradation) {
+  const Orthotropic m;
+  const Discretisation d = rectangle(0.004, 0.002, 9, 5, 2.5, 0.2, 1);
+  ExplicitOptions opt;
+  opt.kinematics = Kinematics::small_strain;
+  opt.failure.enabled = true;
+  opt.failure.criterion = an::Criterion::max_stress;
+  opt.failure.lamina = gfrp_lamina();
+  opt.failure.degradation = Degradation::mode_factors;
+  const Eigen::Matrix3d Q = m.Q();
+  auto scaled = [&](double kE1, double kE2, double kG, double knu) {
+    Orthotropic o = m;
+    o.E1 *= kE1;
+    o.E2 *= kE2;
+    o.G12 *= kG;
+    o.nu12 *= knu;
+    return o;
+  };
+  struct Case {
+    const char* name;
+    double theta, sign, strength;  // load along x: material 1 (theta 0) or 2 (theta 90 deg)
+    int mode;
+    Orthotropic expected;
+  };
+  const Case cases[4] = {
+      {"fibre tension", 0.0, 1.0, 697.8e6, fibre_damage, scaled(0.07, 0.07, 0.07, 0.07)},
+      {"fibre compression", 0.0, -1.0, 443.76e6, fibre_damage, scaled(0.14, 0.14, 0.14, 0.14)},
+      {"matrix tension", kPi / 2, 1.0, 89.7216e6, matrix_damage, scaled(1.0, 0.2, 0.2, 1.0)},
+      {"matrix compression", kPi / 2, -1.0, 148.33e6, matrix_damage, scaled(1.0, 0.4, 0.4, 1.0)},
+  };
+  for (const Case& c : cases) {
+    ExplicitEFG s(d, m, c.theta, opt);
+    const bool fibre = c.mode == fibre_damage;
+    // Uniaxial stress along x before failure: lateral strain -Q12/Q22 (fibre) or -Q12/Q11 (matrix).
+    const double Ex = fibre ? m.E1 : m.E2, r = fibre ? -Q(0, 1) / Q(1, 1) : -Q(0, 1) / Q(0, 0);
+    const double e = c.sign * 1.01 * c.strength / Ex;
+    s.set_displacement(homogeneous(d, e, r * e, 0.0));
+    const auto dmg = s.damage(0);
+    const auto comp = s.compressive(0);
+    const Eigen::Vector3d eps(e, r * e, 0.0);
+    const Eigen::Vector3d expected = c.expected.Qbar(c.theta) * eps;
+    const double err = (s.pk2(0) - expected).norm() / expected.norm();
+    BOOST_TEST_MESSAGE("mode factors, " << c.name << ": sigma_x " << s.pk2(0)(0) << " Pa, expected "
+                                        << expected(0) << " (undamaged " << (m.Qbar(c.theta) * eps)(0)
+                                        << "), relative error " << err);
+    BOOST_TEST(dmg[c.mode] == 1.0, c.name);
+    BOOST_TEST(dmg[fibre ? matrix_damage : fibre_damage] == 0.0, c.name);
+    BOOST_TEST(static_cast<int>(comp[fibre ? 0 : 1]) == (c.sign < 0 ? 1 : 0), c.name);
+    BOOST_TEST(err < 1e-10, c.name);
+  }
+  // Several failed modes: the rules apply in sequence (factors multiply); interface: G12, nu12
+  // times the residual.
+  {
+    ExplicitEFG s(d, m, 0.3, opt);
+    const Eigen::Matrix3d K = s.degraded_stiffness({1.0, 1.0, 1.0}, {1, 0});
+    const Orthotropic o = scaled(0.14, 0.14 * 0.2, 0.14 * 0.2 * 0.01, 0.14 * 0.01);
+    BOOST_TEST((K - o.Qbar(0.3)).norm() < 1e-12 * o.Qbar(0.3).norm());
+  }
+  // The sudden scheme is unchanged: failed moduli times `residual`.
+  {
+    ExplicitOptions so = opt;
+    so.failure.degradation = Degradation::sudden;
+    ExplicitEFG s(d, m, 0.3, so);
+    const Eigen::Matrix3d K = s.degraded_stiffness({1.0, 0.0, 0.0}, {1, 0});
+    const Orthotropic o = scaled(0.01, 1.0, 0.01, 0.01);
+    BOOST_TEST((K - o.Qbar(0.3)).norm() < 1e-12 * o.Qbar(0.3).norm());
+  }
+}
+
+// The cheap bound used to skip LaRC02's fracture-plane search is an upper bound of the searched
+// matrix-compression index, and the fibre index is unchanged when the search is skipped.
+BOOST_AUTO_TEST_CASE(larc02_matrix_compression_bound_holds) {
+  const an::Lamina l = gfrp_lamina();
+  double worst = 1e300;  // smallest bound / index over the sweep (>= 1 required)
+  int n = 0;
+  for (int i = 1; i <= 40; ++i) {
+    for (int j = -40; j <= 40; ++j) {
+      for (double s11 : {-140e6, 0.0, 300e6}) {
+        an::PlaneStress ps;
+        ps.s11 = s11;
+        ps.s22 = -i * 5e6;  // -5 ... -200 MPa
+        ps.t12 = j * 1.5e6;  // -60 ... 60 MPa
+        const an::FailureIndices full = an::larc02_failure(ps, l);
+        const an::FailureIndices fast = an::larc02_failure(ps, l, false);
+        BOOST_TEST(fast.fibre == full.fibre);
+        BOOST_TEST(std::isnan(fast.matrix));
+        const double b = larc02_matrix_compression_bound(ps.s22, ps.t12, l);
+        if (full.matrix > 0.0) {
+          worst = std::min(worst, b / full.matrix);
+          ++n;
+        }
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("LaRC02 matrix-compression bound / searched index: min " << worst << " over " << n << " states");
+  BOOST_TEST(worst >= 1.0);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(contact)
@@ -300,6 +401,33 @@ BOOST_AUTO_TEST_CASE(pressed_block_reported_forces_equal_loads) {
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(cutting_setup)
+
+BOOST_AUTO_TEST_CASE(rounded_edge_is_tangent_arc) {
+  // Edge radius option: the arc points lie on a circle of the given radius, its end points on the
+  // clearance and rake faces through the sharp edge, tangent to them, and the tool stays convex.
+  const Vec2 E(1e-3, 0.5e-3);
+  const double rho = 20e-6, rake = 0.1, cl = 7.0 * kPi / 180.0;
+  const auto v = edge_vertices(E, rake, cl, rho, 8);
+  BOOST_REQUIRE(v.size() == 9u);
+  const Vec2 u1(-std::sin(rake), std::cos(rake)), u2(-std::cos(cl), std::sin(cl));  // face directions
+  auto dist_line = [&](const Vec2& p, const Vec2& u) { return std::abs(u.x() * (p - E).y() - u.y() * (p - E).x()); };
+  BOOST_TEST(dist_line(v.front(), u2) < 1e-12 * rho);  // on the clearance face
+  BOOST_TEST(dist_line(v.back(), u1) < 1e-12 * rho);   // on the rake face
+  // Circle through all points: centre from the first point along the inward clearance normal.
+  const Vec2 C = v.front() + rho * Vec2(std::sin(cl), std::cos(cl));
+  for (const auto& p : v) BOOST_TEST(std::abs((p - C).norm() - rho) < 1e-12 * rho);
+  BOOST_TEST(std::abs((v.back() - C).dot(u1)) < 1e-12 * rho);  // tangent to the rake face
+  // Convex, counter-clockwise with the rest of the tool polygon.
+  std::vector<Vec2> poly = v;
+  poly.push_back(E + Vec2(-1e-3 * std::tan(rake), 1e-3));
+  poly.push_back(E + Vec2(-1e-3, 1e-3));
+  poly.push_back(E + Vec2(-1e-3, 1e-3 * std::tan(cl)));
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const Vec2 a = poly[(k + 1) % poly.size()] - poly[k], b = poly[(k + 2) % poly.size()] - poly[(k + 1) % poly.size()];
+    BOOST_TEST(a.x() * b.y() - a.y() * b.x() > 0.0);
+  }
+  BOOST_TEST(edge_vertices(E, rake, cl, 0.0, 8).size() == 1u);  // sharp edge: E itself
+}
 
 BOOST_AUTO_TEST_CASE(tool_engages_at_gap_over_speed) {
   // Smoke test of the cutting set-up (coarse, 10 um of travel): the tool first touches the

@@ -141,6 +141,60 @@ BOOST_AUTO_TEST_CASE(prefailed_band_releases_its_nodes) {
   BOOST_TEST(s.velocities()[r].norm() == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(collapse_erosion_of_failed_material) {
+  // 1 x 1 mm, 11 x 11 nodes, supports 2h; a band |y - 0.5 mm| < 0.25 mm of matrix-failed Gauss
+  // points (not eroded by the fibre-and-matrix rule). A node of the band's middle row is moved to
+  // 0.05 h of its right-hand neighbour: with collapse_ratio 0.1 its support (all failed) is eroded,
+  // it is released and the Eq 56 step returns to its initial value; without damage nothing is
+  // eroded and the step stays at 0.05 of it.
+  const double L = 1e-3, h = 0.1e-3;
+  const Discretisation d = rectangle(L, L, 11, 11, 2.0);
+  for (bool damaged : {true, false}) {
+    ExplicitOptions opt;
+    opt.erosion = Erosion::fibre_and_matrix;
+    opt.collapse_ratio = 0.1;
+    ExplicitEFG s(d, gfrp(), 0.3, opt);
+    const double dt0 = opt.cfl * s.critical_time_step();
+    if (damaged) {
+      for (std::size_t g = 0; g < s.num_gauss(); ++g) {
+        if (std::abs(d.gauss[g].x.y() - 0.5 * L) < 0.25 * L) s.set_damage(g, {0.0, 1.0, 0.0});
+      }
+    }
+    int r = -1;
+    for (std::size_t I = 0; I < d.nodes.size(); ++I) {
+      if (std::abs(d.nodes[I].y() - 0.5 * L) < 1e-9 && std::abs(d.nodes[I].x() - 0.5 * L) < 1e-9) r = static_cast<int>(I);
+    }
+    BOOST_REQUIRE(r >= 0);
+    std::size_t support = 0;
+    for (std::size_t g = 0; g < s.num_gauss(); ++g) {
+      const auto& n = s.shape(g).nodes;
+      support += std::find(n.begin(), n.end(), r) != n.end();
+    }
+    std::vector<Vec2> u(d.nodes.size(), Vec2::Zero());
+    u[r] = Vec2(0.95 * h, 0.0);
+    s.set_displacement(u);
+    BOOST_TEST(s.eroded_count() == 0u);
+    const double dt = s.step();
+    BOOST_TEST_MESSAGE("collapse erosion (" << (damaged ? "failed band" : "intact") << "): dt/dt0 " << dt / dt0
+                                            << ", eroded " << s.collapse_eroded_count() << " (support of the node "
+                                            << support << "), released " << s.released_count());
+    if (damaged) {
+      BOOST_TEST(s.released(r));
+      BOOST_TEST(s.collapse_eroded_count() >= support);
+      BOOST_TEST(std::abs(dt - dt0) < 1e-9 * dt0);
+      for (std::size_t I = 0; I < d.nodes.size(); ++I) {
+        if (std::abs(d.nodes[I].y() - 0.5 * L) > 0.25 * L) BOOST_TEST(!s.released(I));  // intact: kept
+      }
+    } else {
+      BOOST_TEST(s.collapse_eroded_count() == 0u);
+      BOOST_TEST(s.released_count() == 0u);
+      BOOST_TEST(std::abs(dt - 0.05 * dt0) < 1e-6 * dt0);
+    }
+    for (int k = 0; k < 20; ++k) s.step();
+    for (const auto& v : s.velocities()) BOOST_TEST(std::isfinite(v.norm()));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(no_force_across_a_cut_failed_band) {
   // One failed row of cells at mid-height plus the visibility cut along it: moving the upper part
   // rigidly produces no force anywhere; without the cut the supports bridge the band.

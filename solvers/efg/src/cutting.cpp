@@ -1,11 +1,31 @@
 #include "cutbench/efg/cutting.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
 #include "cutbench/common/errors.hpp"
 
 namespace cutbench::efg {
+
+std::vector<Vec2> edge_vertices(const Vec2& E, double rake, double clearance, double radius, int segments) {
+  if (!(radius > 0.0)) return {E};
+  if (segments < 1) throw InputError("edge_segments", "must be >= 1");
+  // Inward normals of the rake face (through E along (-sin rake, cos rake)) and of the clearance
+  // face (through E along (-cos clearance, sin clearance)); the edge circle is tangent to both.
+  const Vec2 n1(-std::cos(rake), -std::sin(rake)), n2(std::sin(clearance), std::cos(clearance));
+  Eigen::Matrix2d A;
+  A << n1.x(), n1.y(), n2.x(), n2.y();
+  const Vec2 C = E + A.inverse() * Vec2(radius, radius);
+  // Arc from the clearance-face tangent point to the rake-face tangent point, counter-clockwise.
+  const double a0 = std::atan2(-n2.y(), -n2.x()), a1 = std::atan2(-n1.y(), -n1.x());
+  std::vector<Vec2> v;
+  for (int k = 0; k <= segments; ++k) {
+    const double a = a0 + (a1 - a0) * k / segments;
+    v.push_back(C + radius * Vec2(std::cos(a), std::sin(a)));
+  }
+  return v;
+}
 
 CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double)>& progress) {
   if (!(s.depth > 0.0)) throw InputError("depth", "must be > 0");
@@ -32,7 +52,9 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   opt.failure.criterion = s.criterion;
   opt.failure.lamina = s.lamina;
   opt.failure.residual = s.residual;
+  opt.failure.degradation = s.degradation;
   opt.erosion = s.erosion;
+  opt.collapse_ratio = s.collapse_ratio;
   // Fibres along (cos theta, sin theta) with the tool moving +x: for 0 < theta < 90 deg they rise
   // ahead of the tool from the edge to the free surface, the path along which the paper's chips
   // separate (sections 5.2 and 6).
@@ -63,7 +85,10 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   const double T = 4.0 * s.work_height, W = 4.0 * s.work_height;
   const Vec2 E(x0 - gap, yE);
   RigidTool tool;
-  tool.vertices = {E, E + Vec2(-T * std::tan(s.rake), T), E + Vec2(-W, T), E + Vec2(-W, W * std::tan(s.clearance))};
+  tool.vertices = edge_vertices(E, s.rake, s.clearance, s.edge_radius, s.edge_segments);
+  tool.vertices.push_back(E + Vec2(-T * std::tan(s.rake), T));
+  tool.vertices.push_back(E + Vec2(-W, T));
+  tool.vertices.push_back(E + Vec2(-W, W * std::tan(s.clearance)));
   tool.velocity = Vec2(V, 0.0);
   tool.mu = s.mu;
   tool.ramp_time = s.ramp_transits * Ly / s.material.wave_speed();
@@ -148,13 +173,19 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     return false;
   };
   bool path = false;
+  std::size_t ncoll_prev = 0;
   while (solver.time() < t_end) {
     const double dt = solver.step();
     r.dt_min = std::min(r.dt_min, dt);
     if (r.t_contact < 0 && solver.contact_count() > 0) r.t_contact = solver.time();
     const double trav = travel_at(solver.time());
-    // Chip completion: sudden drop of the Eq 56 step below its running mean (section 5.4).
-    if (s.drop > 0.0 && trav >= s.min_travel && dt < (1.0 - s.drop) * ema) {
+    // Chip completion: sudden drop of the Eq 56 step below its running mean (section 5.4). A
+    // collapse-erosion event counts as a drop: it intercepts a step that would have fallen below
+    // collapse_ratio x its initial value.
+    const std::size_t ncoll = solver.collapse_eroded_count();
+    const bool collapse_event = ncoll > ncoll_prev;
+    ncoll_prev = ncoll;
+    if (s.drop > 0.0 && trav >= s.min_travel && (dt < (1.0 - s.drop) * ema || collapse_event)) {
       if (r.travel_first_drop < 0.0) r.travel_first_drop = trav;
       if (!s.completion_guard || path) {
         r.t_complete = solver.time();
@@ -251,6 +282,7 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     }
   }
   r.released = solver.released_count();
+  r.collapse_eroded = solver.collapse_eroded_count();
   return r;
 }
 

@@ -52,6 +52,15 @@ ExplicitEFG::ExplicitEFG(const Discretisation& d, const Orthotropic& mat, double
   }
   compute_internal_forces();
   for (std::size_t I = 0; I < n; ++I) a_[I] = (fext_[I] - fint_[I]) / mass_[I];
+  {
+    CellList cl;
+    cl.build(X0_, spacing_);
+    dmin0_ = cl.min_pair_distance();
+    if (!std::isfinite(dmin0_)) dmin0_ = spacing_;
+  }
+  if (opt_.collapse_ratio < 0.0 || opt_.collapse_ratio >= 1.0) {
+    throw InputError("collapse_ratio", "must be in [0, 1) (0: off)");
+  }
 }
 
 void ExplicitEFG::add_velocity_bc(int node, int dof, std::function<double(double)> v) {
@@ -129,6 +138,14 @@ void ExplicitEFG::compute_internal_forces() {
   }
 }
 
+double larc02_matrix_compression_bound(double s22, double t12, const analytic::Lamina& m) {
+  const double ST = analytic::transverse_shear_strength(m.Y_C, m.alpha0);
+  const double eta_T = analytic::larc_eta_T(m.alpha0), eta_L = analytic::larc_eta_L(m.S_L, m.Y_C, m.alpha0);
+  const double a = std::abs(s22);
+  const double tT = a * (0.5 + std::max(0.0, -eta_T)), tL = std::abs(t12) + std::max(0.0, -eta_L) * a;
+  return (tT / ST) * (tT / ST) + (tL / m.S_L) * (tL / m.S_L);
+}
+
 bool ExplicitEFG::update_damage(GP& q) const {
   const FailureOptions& fo = opt_.failure;
   const bool has_interface = fo.criterion == analytic::Criterion::max_stress || (fo.S_sigma > 0.0 && fo.S_tau > 0.0);
@@ -144,7 +161,16 @@ bool ExplicitEFG::update_damage(GP& q) const {
   ps.s11 = s12(0);
   ps.s22 = s12(1);
   ps.t12 = s12(2);
-  const analytic::FailureIndices fi = analytic::failure_indices(fo.criterion, ps, fo.lamina);
+  analytic::FailureIndices fi;
+  if (fo.criterion == analytic::Criterion::larc02) {
+    // The matrix-compression search is needed only while the matrix is intact and the bound does
+    // not exclude failure (with sigma11 < -Y_C LaRC02 uses misalignment-frame stresses: search).
+    const bool search = q.damage[matrix_damage] < 1.0 &&
+                        (ps.s11 < -fo.lamina.Y_C || larc02_matrix_compression_bound(ps.s22, ps.t12, fo.lamina) >= 1.0);
+    fi = analytic::larc02_failure(ps, fo.lamina, search);
+  } else {
+    fi = analytic::failure_indices(fo.criterion, ps, fo.lamina);
+  }
   double interface = 0.0;
   if (!std::isnan(fi.shear)) {
     interface = fi.shear;
@@ -157,16 +183,39 @@ bool ExplicitEFG::update_damage(GP& q) const {
   for (int k = 0; k < 3; ++k) {
     if (q.damage[k] < 1.0 && idx[k] >= 1.0) {
       q.damage[k] = 1.0;
+      if (k == fibre_damage) q.compressive[0] = ps.s11 < 0.0;
+      if (k == matrix_damage) q.compressive[1] = ps.s22 < 0.0;
       changed = true;
     }
   }
-  if (changed) q.Qd = degraded_stiffness(q.damage);
+  if (changed) q.Qd = degraded_stiffness(q.damage, q.compressive);
   return changed;
 }
 
-Eigen::Matrix3d ExplicitEFG::degraded_stiffness(const std::array<double, 3>& damage) const {
+Eigen::Matrix3d ExplicitEFG::degraded_stiffness(const std::array<double, 3>& damage,
+                                                const std::array<char, 2>& compressive) const {
   Orthotropic m = mat_;
   const double r = opt_.failure.residual;
+  if (opt_.failure.degradation == Degradation::mode_factors) {
+    const ModeFactors& f = opt_.failure.factors;
+    if (damage[fibre_damage] > 0.0) {
+      const double k = compressive[0] ? f.fibre_compression : f.fibre_tension;
+      m.E1 *= k;
+      m.E2 *= k;
+      m.G12 *= k;
+      m.nu12 *= k;
+    }
+    if (damage[matrix_damage] > 0.0) {
+      const double k = compressive[1] ? f.matrix_compression : f.matrix_tension;
+      m.E2 *= k;
+      m.G12 *= k;
+    }
+    if (damage[interface_damage] > 0.0) {
+      m.G12 *= r;
+      m.nu12 *= r;
+    }
+    return m.Qbar(theta_);
+  }
   if (damage[fibre_damage] > 0.0) {
     m.E1 *= r;
     m.G12 *= r;
@@ -181,9 +230,11 @@ Eigen::Matrix3d ExplicitEFG::degraded_stiffness(const std::array<double, 3>& dam
   return m.Qbar(theta_);
 }
 
-void ExplicitEFG::set_damage(std::size_t g, const std::array<double, 3>& damage) {
+void ExplicitEFG::set_damage(std::size_t g, const std::array<double, 3>& damage,
+                             const std::array<char, 2>& compressive) {
   gp_.at(g).damage = damage;
-  gp_[g].Qd = degraded_stiffness(damage);
+  gp_[g].compressive = compressive;
+  gp_[g].Qd = degraded_stiffness(damage, compressive);
 }
 
 void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
@@ -286,6 +337,7 @@ void ExplicitEFG::add_opaque_segment(const Segment& s) {
   if (pts.empty()) return;
   auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
   for (std::size_t k = 0; k < ids.size(); ++k) gp_[ids[k]].sd = std::move(sf[k]);
+  node_gp_dirty_ = true;
   update_release();
 }
 
@@ -303,6 +355,7 @@ void ExplicitEFG::update_reference() {
   for (std::size_t g = 0; g < gp_.size(); ++g) pts[g] = gp_[g].xr;
   auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
   for (std::size_t g = 0; g < gp_.size(); ++g) gp_[g].sd = std::move(sf[g]);
+  node_gp_dirty_ = true;
 }
 
 void ExplicitEFG::apply_bcs(double t) {
@@ -325,8 +378,73 @@ double ExplicitEFG::critical_time_step() const {
   return dmin / mat_.wave_speed();
 }
 
+bool ExplicitEFG::erode_collapsed() {
+  const double r = opt_.collapse_ratio * dmin0_;
+  std::vector<int> ids;
+  std::vector<Vec2> pts;
+  for (std::size_t I = 0; I < x_.size(); ++I) {
+    if (active_[I]) {
+      ids.push_back(static_cast<int>(I));
+      pts.push_back(x_[I]);
+    }
+  }
+  CellList cl;
+  cl.build(pts, std::max(spacing_, r));
+  pairs_.clear();
+  cl.pairs_within(r, pairs_);
+  if (pairs_.empty()) return false;
+  if (node_gp_dirty_) {
+    node_gp_start_.assign(x_.size() + 1, 0);
+    for (const auto& q : gp_) {
+      for (int I : q.sd.nodes) ++node_gp_start_[I + 1];
+    }
+    for (std::size_t I = 0; I < x_.size(); ++I) node_gp_start_[I + 1] += node_gp_start_[I];
+    node_gp_.assign(node_gp_start_.back(), 0);
+    std::vector<int> fill(node_gp_start_.begin(), node_gp_start_.end() - 1);
+    for (std::size_t g = 0; g < gp_.size(); ++g) {
+      for (int I : gp_[g].sd.nodes) node_gp_[fill[I]++] = static_cast<int>(g);
+    }
+    node_gp_dirty_ = false;
+  }
+  auto failed = [&](int g) {
+    const GP& q = gp_[g];
+    return q.eroded || q.damage[0] + q.damage[1] + q.damage[2] > 0.0;
+  };
+  bool any = false;
+  for (const auto& pr : pairs_) {
+    for (int I : {ids[pr.first], ids[pr.second]}) {
+      if (!active_[I]) continue;
+      bool all = true;
+      for (int k = node_gp_start_[I]; k < node_gp_start_[I + 1] && all; ++k) all = failed(node_gp_[k]);
+      if (!all) continue;
+      for (int k = node_gp_start_[I]; k < node_gp_start_[I + 1]; ++k) {
+        GP& q = gp_[node_gp_[k]];
+        if (!q.eroded) {
+          q.eroded = true;
+          q.S.setZero();
+          ++ncollapse_;
+        }
+      }
+      active_[I] = 0;  // all its support is eroded: released (update_release confirms)
+      any = true;
+    }
+  }
+  if (any) {
+    update_release();
+    compute_internal_forces();
+    for (std::size_t I = 0; I < x_.size(); ++I) {
+      a_[I] = active_[I] ? Vec2((fext_[I] - fint_[I]) / mass_[I]) : Vec2::Zero();
+    }
+  }
+  return any;
+}
+
 double ExplicitEFG::step() {
-  const double dt = opt_.cfl * critical_time_step();
+  double dt = opt_.cfl * critical_time_step();
+  if (opt_.collapse_ratio > 0.0 && dt < opt_.collapse_ratio * opt_.cfl * dmin0_ / mat_.wave_speed() &&
+      erode_collapsed()) {
+    dt = opt_.cfl * critical_time_step();
+  }
   step(dt);
   return dt;
 }

@@ -106,6 +106,28 @@ double CellList::min_pair_distance() const {
   return std::sqrt(best2);
 }
 
+void CellList::pairs_within(double r, std::vector<std::pair<int, int>>& out) const {
+  const double r2 = r * r;
+  auto add = [&](int a, int b) {
+    if (((*pts_)[a] - (*pts_)[b]).squaredNorm() < r2) out.emplace_back(std::min(a, b), std::max(a, b));
+  };
+  for (long i = 0; i < nx_; ++i) {
+    for (long j = 0; j < ny_; ++j) {
+      const long c = key(i, j);
+      for (int a = start_[c]; a < start_[c + 1]; ++a) {
+        for (int b = a + 1; b < start_[c + 1]; ++b) add(items_[a], items_[b]);
+        const long di[4] = {1, 1, 0, -1}, dj[4] = {0, 1, 1, 1};
+        for (int n = 0; n < 4; ++n) {
+          const long ii = i + di[n], jj = j + dj[n];
+          if (ii < 0 || ii >= nx_ || jj < 0 || jj >= ny_) continue;
+          const long cc = key(ii, jj);
+          for (int b = start_[cc]; b < start_[cc + 1]; ++b) add(items_[a], items_[b]);
+        }
+      }
+    }
+  }
+}
+
 bool line_of_sight_blocked(const Vec2& x, const Vec2& xI, const Segment& s) {
   auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
   const Vec2 r = xI - x, q = s.b - s.a;

@@ -174,8 +174,14 @@ void register_solvers(SolverRegistry& registry) {
                  p("ramp_transits", Dim::dimensionless, "tool speed ramp, in wave transits of the workpiece height", 50, 0, 1e4),
                  p("mu", Dim::dimensionless, "rake-face friction coefficient (assumption)", 0.3, 0, 2),
                  p("clearance", Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
+                 p("edge_radius", Dim::length, "cutting-edge radius (assumption, not in the paper; 0: sharp)", 0.0, 0, inf),
                  p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1),
+                 p("degradation", Dim::dimensionless,
+                   "0: sudden (failed moduli x residual), 1: mode factors of Camanho-Matthews/Tserpes", 1, 0, 1),
                  p("erosion", Dim::dimensionless, "separation: 0 none, 1 fibre and matrix failed, 2 either", 1, 0, 2),
+                 p("collapse_ratio", Dim::dimensionless,
+                   "collapse erosion: failed material whose nodes come closer than this x the initial spacing is eroded (0: off)",
+                   0.1, 0, 0.99),
                  p("visibility", Dim::dimensionless, "visibility criterion across the notch and the cut line (0/1)", 1, 0, 1),
                  p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99),
                  p("drop_window", Dim::dimensionless, "steps of the running mean of dt", 200, 1, 1e6),
@@ -204,6 +210,7 @@ void register_solvers(SolverRegistry& registry) {
                  {"sub_matrix_fraction", Dim::dimensionless, "matrix-damaged fraction within one depth below the cut"},
                  {"eroded", Dim::dimensionless, "separated Gauss points"},
                  {"released", Dim::dimensionless, "released nodes"},
+                 {"collapse_eroded", Dim::dimensionless, "Gauss points eroded by the collapse criterion"},
                  {"nodes", Dim::dimensionless, "nodes"},
                  {"gauss_points", Dim::dimensionless, "Gauss points"},
                  {"steps", Dim::dimensionless, "time steps"},
@@ -250,8 +257,11 @@ void register_solvers(SolverRegistry& registry) {
     s.mu = v.at("mu");
     s.clearance = v.at("clearance");
     s.residual = v.at("residual");
+    s.edge_radius = v.at("edge_radius");
+    s.degradation = static_cast<Degradation>(static_cast<int>(std::lround(v.at("degradation"))));
     s.erosion = static_cast<Erosion>(static_cast<int>(std::lround(v.at("erosion"))));
     s.visibility = v.at("visibility") > 0.5;
+    s.collapse_ratio = v.at("collapse_ratio");
     s.drop = v.at("drop");
     s.drop_window = static_cast<int>(std::lround(v.at("drop_window")));
     s.min_travel = v.at("min_travel");
@@ -303,6 +313,7 @@ void register_solvers(SolverRegistry& registry) {
                    {"sub_matrix_fraction", frac(r.sub_matrix, r.sub_gauss)},
                    {"eroded", static_cast<double>(r.eroded)},
                    {"released", static_cast<double>(r.released)},
+                   {"collapse_eroded", static_cast<double>(r.collapse_eroded)},
                    {"nodes", static_cast<double>(r.nodes)},
                    {"gauss_points", ng},
                    {"steps", static_cast<double>(r.steps)},
@@ -325,7 +336,8 @@ void register_solvers(SolverRegistry& registry) {
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
     out.notes.push_back("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
                         "edge, constant friction, fixed bottom and far end and the time scaling are assumptions; "
-                        "failed (fibre+matrix) Gauss points carry no stress, fully unsupported nodes are released; "
+                        "mode-dependent degradation factors (Camanho & Matthews 1999, Tserpes et al. 2002; "
+                        "degradation = 0: sudden to the residual); failed (fibre+matrix) Gauss points carry no stress, fully unsupported nodes are released; "
                         "visibility across the notch and the cut line behind the edge (solvers/efg/README.md).");
     return out;
   };

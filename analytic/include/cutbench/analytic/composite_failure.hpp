@@ -67,6 +67,11 @@ double larc_toughness_ratio(double E1, double E2, double nu21, double G12, doubl
 FailureIndices max_stress_failure(const PlaneStress& s, const Lamina& m);
 FailureIndices hashin_failure(const PlaneStress& s, const Lamina& m);
 FailureIndices larc02_failure(const PlaneStress& s, const Lamina& m);
+// As above; with `matrix_compression_search` false the fracture-plane search of matrix
+// compression (the costly part: 180-point scan and golden-section refinement) is skipped and the
+// compressive matrix index is returned as NaN (for callers that need only the fibre index or
+// know the matrix index to be below 1). Every other index is identical.
+FailureIndices larc02_failure(const PlaneStress& s, const Lamina& m, bool matrix_compression_search);
 FailureIndices failure_indices(Criterion c, const PlaneStress& s, const Lamina& m);
 
 struct EnvelopePoint {

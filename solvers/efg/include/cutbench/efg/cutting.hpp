@@ -27,6 +27,10 @@ struct CuttingSetup {
   double support_factor = 2.0;
   double rake = 0.0;             // rad (Table 3: 0)
   double clearance = 7.0 * 3.14159265358979323846 / 180.0;  // assumption (not in the paper)
+  // Cutting-edge radius (not in the paper; 0 = sharp): the edge is an arc tangent to the rake and
+  // clearance faces, drawn with `edge_segments` straight faces (the tool stays convex).
+  double edge_radius = 0.0;
+  int edge_segments = 8;
   double speed = 3800e-3 / 60.0;  // m/s (Table 3)
   double time_scale = 1.0;       // tool speed multiplier (time scaling); 1 = paper speed
   double travel = 0.5e-3;        // maximum tool travel after first contact
@@ -36,11 +40,14 @@ struct CuttingSetup {
   double ramp_transits = 50.0;
   double mu = 0.3;               // rake-face friction (paper: function of theta after [63], not given)
   double residual = 0.01;
+  Degradation degradation = Degradation::mode_factors;  // see FailureOptions (README: default since session 3)
+  double collapse_ratio = 0.1;  // collapse erosion (ExplicitOptions::collapse_ratio), 0: off
   double cfl = 0.5;
   Erosion erosion = Erosion::fibre_and_matrix;
   bool visibility = true;
   // Chip completion (section 5.4): the Eq 56 step falls below (1 - drop) times its running mean
-  // over the last `drop_window` steps; 0 disables the detector (run to `travel`).
+  // over the last `drop_window` steps, or a collapse-erosion event intercepts a step below
+  // collapse_ratio x its initial value; 0 disables the detector (run to `travel`).
   double drop = 0.3;
   int drop_window = 200;
   double min_travel = 0.0;       // no detection before this travel (start-up transient)
@@ -76,7 +83,7 @@ struct CuttingResult {
   int nodes = 0;
   double hx = 0.0, hy = 0.0, y_edge = 0.0;
   std::size_t fibre_damaged = 0, matrix_damaged = 0, interface_damaged = 0, gauss = 0;
-  std::size_t eroded = 0, released = 0;
+  std::size_t eroded = 0, released = 0, collapse_eroded = 0;
   // Damage in the chip: Gauss points above the cut line between the rake face at the start and
   // the fibre line through the tool edge at the end of the run (reference configuration).
   std::size_t chip_gauss = 0, chip_fibre = 0, chip_matrix = 0;
@@ -84,6 +91,10 @@ struct CuttingResult {
   std::size_t sub_gauss = 0, sub_fibre = 0, sub_matrix = 0;
   std::vector<CuttingSnapshot> snapshots;
 };
+
+// Tool-edge vertices replacing the sharp edge E (counter-clockwise, from the clearance face to
+// the rake face): {E} when radius = 0, else segments + 1 points on the tangent arc.
+std::vector<Vec2> edge_vertices(const Vec2& E, double rake, double clearance, double radius, int segments);
 
 CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double)>& progress = nullptr);
 

@@ -41,11 +41,29 @@ enum class Kinematics { small_strain, total_lagrangian, updated_lagrangian };
 // otherwise (sigma22+/S_sigma)^2 + (tau12/S_tau)^2 with the interface strengths of Table 1 when
 // given (> 0), else none. When the stress of a Gauss point gains damage it is recomputed with the
 // degraded stiffness in the same step (the paper's "trial stress", section 3.6).
+//
+// Degradation schemes (solvers/efg/README.md, "Progressive failure"):
+//  - sudden: the table above, every failed modulus times `residual`;
+//  - mode_factors: mode- and sign-dependent factors of Camanho & Matthews (1999) as tabulated by
+//    Tserpes et al. (2002), the selective sudden degradation used in FE models of FRP cutting:
+//      fibre tension (sigma11 >= 0 at failure)    -> E1, E2, G12, nu12 x 0.07
+//      fibre compression                          -> E1, E2, G12, nu12 x 0.14
+//      matrix tension (sigma22 >= 0 at failure)   -> E2, G12 x 0.2
+//      matrix compression                         -> E2, G12 x 0.4
+//      interface (fibre-matrix shear)             -> G12, nu12 x `residual` (0 in the source)
+//    rules of several failed modes are applied in sequence (factors multiply).
+enum class Degradation { sudden = 0, mode_factors = 1 };
+struct ModeFactors {
+  double fibre_tension = 0.07, fibre_compression = 0.14;
+  double matrix_tension = 0.2, matrix_compression = 0.4;
+};
 struct FailureOptions {
   bool enabled = false;
   analytic::Criterion criterion = analytic::Criterion::larc02;
   analytic::Lamina lamina;
   double residual = 0.01;  // degraded fraction of a failed modulus
+  Degradation degradation = Degradation::sudden;
+  ModeFactors factors;     // mode_factors scheme
   double S_sigma = 0.0;    // interface normal strength (Table 1), 0: unused
   double S_tau = 0.0;      // interface shear strength (Table 1), 0: unused
 };
@@ -55,6 +73,14 @@ struct FailureOptions {
 // is released: it leaves the model (no internal force, no contact, excluded from the Eq 56 time
 // step, velocity frozen), as the debris of an element-free crack.
 enum class Erosion { none, fibre_and_matrix, fibre_or_matrix };
+
+// Upper bound of the LaRC02 matrix-compression index (sigma22 < 0, fracture plane searched over
+// [0, alpha0]) from |sigma22| and |tau12| alone: with c = cos a, s = sin a,
+//   tau_T = <|s22| c (s - eta_T c)> <= |s22| (1/2 + max(0, -eta_T)),
+//   tau_L = <c (|t12| + eta_L s22 c)> <= |t12| + max(0, -eta_L) |s22|,
+// so the index is at most (tau_T,max/S_T)^2 + (tau_L,max/S_L)^2. Below 1 the costly search can be
+// skipped without changing any failure decision (used by ExplicitEFG; tested against the search).
+double larc02_matrix_compression_bound(double s22, double t12, const analytic::Lamina& m);
 enum DamageMode : int { fibre_damage = 0, matrix_damage = 1, interface_damage = 2 };
 
 // Rigid tool: a convex polygon (counter-clockwise vertices at t = 0) translating at `velocity`,
@@ -88,6 +114,14 @@ struct ExplicitOptions {
   double thickness = 1.0;   // out-of-plane thickness (m); forces are per this thickness
   FailureOptions failure;
   Erosion erosion = Erosion::none;
+  // Erosion of collapsed failed material (solvers/efg/README.md, "Collapse erosion"): when two
+  // active nodes come closer than `collapse_ratio` x the initial smallest nodal distance (the
+  // Eq 56 step would fall below that fraction of its initial value), each node of the pair whose
+  // supporting Gauss points have all failed (any mode) or are eroded has those Gauss points
+  // eroded, so it is released and leaves the time-step estimate. Intact material is never
+  // eroded: a pair with an intact supporting Gauss point on both nodes keeps the small step.
+  // 0: off.
+  double collapse_ratio = 0.0;
 };
 
 // A prescribed nodal velocity component v(t) (displacement follows by integration).
@@ -126,6 +160,7 @@ public:
   bool released(std::size_t I) const { return !active_[I]; }
   std::size_t released_count() const { return nreleased_; }
   std::size_t eroded_count() const { return neroded_; }
+  std::size_t collapse_eroded_count() const { return ncollapse_; }  // Gauss points eroded by collapse
 
   double critical_time_step() const;  // Eqs 55-56 on the current configuration (active nodes)
   double step();                      // one step at cfl * critical; returns dt
@@ -148,8 +183,15 @@ public:
   Vec2 gauss_position(std::size_t g) const;
   std::array<double, 3> damage(std::size_t g) const { return gp_[g].damage; }
   // Imposes damage flags on Gauss point g (pre-failed material, tests); the stiffness is degraded
-  // as for failure in the run, and erosion applies at the next force evaluation.
-  void set_damage(std::size_t g, const std::array<double, 3>& damage);
+  // as for failure in the run, and erosion applies at the next force evaluation. `compressive`:
+  // fibre / matrix failed in compression (mode_factors scheme).
+  void set_damage(std::size_t g, const std::array<double, 3>& damage,
+                  const std::array<char, 2>& compressive = {0, 0});
+  // Fibre / matrix of Gauss point g failed in compression (sign of sigma11 / sigma22 at failure).
+  std::array<char, 2> compressive(std::size_t g) const { return gp_[g].compressive; }
+  // Degraded x-y stiffness for the given damage state (the undamaged Qbar when none).
+  Eigen::Matrix3d degraded_stiffness(const std::array<double, 3>& damage,
+                                     const std::array<char, 2>& compressive = {0, 0}) const;
   // Recomputes stresses and internal forces at the current positions (no time advance).
   void refresh() { compute_internal_forces(); }
   double kinetic_energy() const;
@@ -165,12 +207,13 @@ private:
     Eigen::Vector3d E = Eigen::Vector3d::Zero(), S = Eigen::Vector3d::Zero();
     ShapeData sd;                    // shape functions on the reference configuration
     std::array<double, 3> damage = {0.0, 0.0, 0.0};  // fibre, matrix, interface
+    std::array<char, 2> compressive = {0, 0};         // fibre, matrix failed in compression
     Eigen::Matrix3d Qd = Eigen::Matrix3d::Zero();    // degraded x-y stiffness (when damaged)
     bool eroded = false;                             // separated: carries no stress
   };
   void update_release();
+  bool erode_collapsed();           // collapse erosion; true when something was eroded
   bool update_damage(GP& q) const;  // true when a new mode failed
-  Eigen::Matrix3d degraded_stiffness(const std::array<double, 3>& damage) const;
   void apply_contact(double dt, std::vector<Vec2>& vhalf);
   void compute_internal_forces();
   void update_reference();
@@ -192,7 +235,11 @@ private:
   std::vector<VelocityBC> bcs_;
   std::vector<Segment> opaque_;
   std::vector<char> active_;
-  std::size_t nreleased_ = 0, neroded_ = 0;
+  std::size_t nreleased_ = 0, neroded_ = 0, ncollapse_ = 0;
+  double dmin0_ = 0.0;                        // initial smallest nodal distance
+  std::vector<int> node_gp_start_, node_gp_;  // node -> supporting Gauss points (CSR), on demand
+  bool node_gp_dirty_ = true;
+  std::vector<std::pair<int, int>> pairs_;    // scratch
   bool erosion_changed_ = false;
   mutable std::vector<Vec2> xactive_;  // scratch for the time step (capacity kept)
   double t_ = 0.0;

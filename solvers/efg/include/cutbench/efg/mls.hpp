@@ -11,6 +11,7 @@
 // the sum over the neighbours (which leaves the MLS shape functions unchanged mathematically but
 // keeps A of order one), or a cubic spline. Each node has its own support radius D_I.
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 namespace cutbench::efg {
@@ -48,6 +49,8 @@ public:
   // Smallest distance between two distinct points (requires cell_size >= that distance to be
   // exact; returns +inf when no pair is closer than cell_size).
   double min_pair_distance() const;
+  // Every pair (i < j, indices into the points) closer than r (r <= cell_size), appended to out.
+  void pairs_within(double r, std::vector<std::pair<int, int>>& out) const;
   double cell_size() const { return h_; }
 
 private:

@@ -210,15 +210,22 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
 
 CuttingResult adapt_cutting(const CuttingSetup& c, int steps, double fraction, std::vector<CuttingAdaptStep>* history,
                             const SocpSettings& settings) {
-  if (steps < 0) throw InputError("adapt_steps", "must be >= 0");
-  if (!(fraction > 0.0 && fraction <= 1.0)) throw InputError("fraction", "must be in (0, 1]");
+  AdaptOptions opt;
+  opt.steps = steps;
+  opt.fraction = fraction;
+  return adapt_cutting(c, opt, history, settings);
+}
+
+CuttingResult adapt_cutting(const CuttingSetup& c, const AdaptOptions& opt, std::vector<CuttingAdaptStep>* history,
+                            const SocpSettings& settings) {
+  if (opt.steps < 0) throw InputError("adapt_steps", "must be >= 0");
+  if (!(opt.fraction > 0.0 && opt.fraction <= 1.0)) throw InputError("fraction", "must be in (0, 1]");
   Mesh mesh = cutting_model(c).mesh;
   for (int step = 0;; ++step) {
     CuttingResult r = solve_cutting_on(cutting_model_on_mesh(mesh, c), c, settings);
     if (history) history->push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.mu_sticking});
-    if (step == steps) return r;
-    const std::vector<int> marked = dorfler_mark(r.solution, mesh.num_elements(), fraction);
-    mesh = refine(mesh, marked);
+    if (step == opt.steps) return r;
+    mesh = adapt_mesh(mesh, r.solution, opt);
   }
 }
 

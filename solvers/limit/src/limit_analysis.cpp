@@ -425,6 +425,17 @@ std::vector<int> dorfler_mark(const LimitSolution& sol, int num_elements, double
   return marked;
 }
 
+Mesh adapt_mesh(const Mesh& mesh, const LimitSolution& sol, const AdaptOptions& opt) {
+  if (!(opt.fraction > 0.0 && opt.fraction <= 1.0)) throw InputError("fraction", "must be in (0, 1]");
+  const std::vector<int> marked = dorfler_mark(sol, mesh.num_elements(), opt.fraction);
+  if (!opt.anisotropic) return refine(mesh, marked);
+  if (!(opt.max_aspect >= 1.0)) throw InputError("max_aspect", "must be >= 1");
+  const Metrics hess = recovered_hessian(mesh, sol.element_dissipation_density);
+  Metrics metric(hess.size());
+  for (std::size_t e = 0; e < hess.size(); ++e) metric[e] = shape_metric(hess[e], opt.max_aspect);
+  return refine_anisotropic(mesh, marked, metric, opt.theta, opt.swap_passes);
+}
+
 std::vector<AdaptStep> adapt_limit(const Mesh& initial, const std::function<LimitModel(Mesh)>& build,
                                    const AdaptOptions& opt, const SocpSettings& settings, LimitSolution* final_solution,
                                    Mesh* final_mesh) {
@@ -436,8 +447,7 @@ std::vector<AdaptStep> adapt_limit(const Mesh& initial, const std::function<Limi
     sol = solve_limit(model, settings);
     steps.push_back({model.mesh.num_elements(), sol.collapse, sol.socp.seconds, sol.socp.iterations});
     if (step == opt.steps) break;
-    const std::vector<int> marked = dorfler_mark(sol, model.mesh.num_elements(), opt.fraction);
-    mesh = refine(model.mesh, marked);
+    mesh = adapt_mesh(model.mesh, sol, opt);
   }
   if (final_solution) *final_solution = std::move(sol);
   if (final_mesh) *final_mesh = std::move(mesh);

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+
+#include <Eigen/Eigenvalues>
 
 #include "cutbench/common/errors.hpp"
 
@@ -265,6 +268,292 @@ Mesh refine(const Mesh& mesh, const std::vector<int>& marked) {
     }
   }
   return make_t6(verts, out);
+}
+
+namespace {
+
+constexpr double kPiMesh = 3.14159265358979323846;
+
+// vertex triangles of a T6 mesh, renumbered: vertex id → original node id in `orig`
+struct VertexMesh {
+  std::vector<Vector2d> verts;
+  std::vector<int> orig;               // vertex → node of the T6 mesh
+  std::vector<int> vid;                // node of the T6 mesh → vertex (−1 for mid-side nodes)
+  std::vector<std::array<int, 3>> tris;
+};
+
+VertexMesh vertex_mesh(const Mesh& mesh) {
+  VertexMesh v;
+  v.vid.assign(mesh.nodes.size(), -1);
+  for (const auto& el : mesh.elements) {
+    std::array<int, 3> t{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      int& id = v.vid[static_cast<std::size_t>(el[k])];
+      if (id < 0) {
+        id = static_cast<int>(v.verts.size());
+        v.verts.push_back(mesh.nodes[static_cast<std::size_t>(el[k])]);
+        v.orig.push_back(el[k]);
+      }
+      t[k] = id;
+    }
+    v.tris.push_back(t);
+  }
+  return v;
+}
+
+// gradients of the three linear shape functions of triangle (a, b, c) (rows) and its area
+Eigen::Matrix<double, 3, 2> p1_gradients(const Vector2d& a, const Vector2d& b, const Vector2d& c, double* area) {
+  const double det = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  if (area) *area = 0.5 * std::abs(det);
+  Eigen::Matrix<double, 3, 2> g;
+  g.row(0) << (b.y() - c.y()) / det, (c.x() - b.x()) / det;
+  g.row(1) << (c.y() - a.y()) / det, (a.x() - c.x()) / det;
+  g.row(2) << (a.y() - b.y()) / det, (b.x() - a.x()) / det;
+  return g;
+}
+
+}  // namespace
+
+Metrics recovered_hessian(const Mesh& mesh, const Eigen::VectorXd& f) {
+  if (f.size() != mesh.num_elements()) throw InputError("element_field", "needs one value per element");
+  const VertexMesh v = vertex_mesh(mesh);
+  const std::size_t nv = v.verts.size(), ne = v.tris.size();
+  std::vector<Eigen::Matrix<double, 3, 2>> grads(ne);
+  std::vector<double> area(ne), wsum(nv, 0.0), fn(nv, 0.0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto& t = v.tris[e];
+    grads[e] = p1_gradients(v.verts[static_cast<std::size_t>(t[0])], v.verts[static_cast<std::size_t>(t[1])],
+                            v.verts[static_cast<std::size_t>(t[2])], &area[e]);
+    for (int i : t) {
+      fn[static_cast<std::size_t>(i)] += area[e] * f[static_cast<Eigen::Index>(e)];
+      wsum[static_cast<std::size_t>(i)] += area[e];
+    }
+  }
+  for (std::size_t i = 0; i < nv; ++i) fn[i] /= wsum[i];
+  std::vector<Vector2d> gn(nv, Vector2d::Zero());
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto& t = v.tris[e];
+    Vector2d g = Vector2d::Zero();
+    for (std::size_t k = 0; k < 3; ++k) g += fn[static_cast<std::size_t>(t[k])] * grads[e].row(static_cast<Eigen::Index>(k)).transpose();
+    for (int i : t) gn[static_cast<std::size_t>(i)] += area[e] * g;
+  }
+  for (std::size_t i = 0; i < nv; ++i) gn[i] /= wsum[i];
+  Metrics h(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto& t = v.tris[e];
+    Eigen::Matrix2d H = Eigen::Matrix2d::Zero();  // H(i, j) = ∂(∂f/∂x_i)/∂x_j
+    for (std::size_t k = 0; k < 3; ++k) H += gn[static_cast<std::size_t>(t[k])] * grads[e].row(static_cast<Eigen::Index>(k));
+    h[e] = 0.5 * (H + H.transpose());
+  }
+  return h;
+}
+
+Eigen::Matrix2d shape_metric(const Eigen::Matrix2d& hessian, double max_aspect) {
+  if (!(max_aspect >= 1.0)) throw InputError("max_aspect", "must be >= 1");
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(0.5 * (hessian + hessian.transpose()));
+  Vector2d lam = es.eigenvalues().cwiseAbs();
+  const double lmax = lam.maxCoeff();
+  if (!(lmax > 0.0) || !std::isfinite(lmax)) return Eigen::Matrix2d::Identity();
+  lam /= lmax;
+  const double floor = 1.0 / (max_aspect * max_aspect);
+  for (Eigen::Index i = 0; i < 2; ++i) lam[i] = std::max(lam[i], floor);
+  return es.eigenvectors() * lam.asDiagonal() * es.eigenvectors().transpose();
+}
+
+namespace {
+
+// bisection of the given edges; returns the vertex triangulation and the parent of each child
+void bisect_core(const Mesh& mesh, const std::vector<std::array<int, 2>>& edges, const Metrics* metric,
+                 std::vector<Vector2d>& verts_out, std::vector<std::array<int, 3>>& out, std::vector<int>& parent) {
+  if (metric && metric->size() != mesh.elements.size()) throw InputError("metric", "needs one matrix per element");
+  const VertexMesh v = vertex_mesh(mesh);
+  std::vector<Vector2d> verts = v.verts;
+  using Edge = std::pair<int, int>;
+  auto key = [](int a, int b) { return Edge(std::min(a, b), std::max(a, b)); };
+  std::map<Edge, int> split;
+  for (const auto& e : edges) {
+    const int a = v.vid.at(static_cast<std::size_t>(e[0])), b = v.vid.at(static_cast<std::size_t>(e[1]));
+    if (a < 0 || b < 0 || a == b) throw InputError("edges", "must be pairs of distinct vertex nodes");
+    split.emplace(key(a, b), -1);
+  }
+  for (auto& [e, mid] : split) {
+    mid = static_cast<int>(verts.size());
+    verts.push_back(0.5 * (verts[static_cast<std::size_t>(e.first)] + verts[static_cast<std::size_t>(e.second)]));
+  }
+  auto mid_of = [&](int a, int b) {
+    const auto it = split.find(key(a, b));
+    return it == split.end() ? -1 : it->second;
+  };
+  out.clear();
+  parent.clear();
+  for (std::size_t e = 0; e < v.tris.size(); ++e) {
+    const auto& t = v.tris[e];
+    std::array<int, 3> m{};
+    int count = 0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      m[k] = mid_of(t[k], t[(k + 1) % 3]);  // mid of edge (t[k], t[k+1])
+      if (m[k] >= 0) ++count;
+    }
+    if (count == 0) {
+      out.push_back(t);
+    } else if (count == 3) {
+      out.push_back({t[0], m[0], m[2]});
+      out.push_back({m[0], t[1], m[1]});
+      out.push_back({m[2], m[1], t[2]});
+      out.push_back({m[0], m[1], m[2]});
+    } else if (count == 1) {
+      std::size_t k = 0;
+      while (m[k] < 0) ++k;
+      const int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+      out.push_back({a, m[k], c});
+      out.push_back({m[k], b, c});
+    } else {
+      // two bisected edges: (a, b) and (b, c) with b their common vertex, (c, a) kept
+      std::size_t k = 0;
+      while (m[k] >= 0) ++k;  // edge (t[k], t[k+1]) is the kept one: c = t[k], a = t[k+1]
+      const int c = t[k], a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+      const int mab = m[(k + 1) % 3], mbc = m[(k + 2) % 3];
+      out.push_back({mab, b, mbc});
+      // quadrilateral a, mab, mbc, c: diagonal a–mbc or mab–c, the shorter in the metric
+      const Eigen::Matrix2d M = metric ? (*metric)[e] : Eigen::Matrix2d::Identity();
+      auto len2 = [&](int i, int j) {
+        const Vector2d d = verts[static_cast<std::size_t>(i)] - verts[static_cast<std::size_t>(j)];
+        return d.dot(M * d);
+      };
+      if (len2(a, mbc) <= len2(mab, c)) {
+        out.push_back({a, mab, mbc});
+        out.push_back({a, mbc, c});
+      } else {
+        out.push_back({a, mab, c});
+        out.push_back({mab, mbc, c});
+      }
+    }
+    parent.resize(out.size(), static_cast<int>(e));
+  }
+  verts_out = std::move(verts);
+}
+
+// metric quality of a triangle: 4√3 A_M / Σ l_M² (1 for a triangle equilateral in the metric)
+double metric_quality(const Vector2d& a, const Vector2d& b, const Vector2d& c, const Eigen::Matrix2d& M) {
+  const Vector2d u = b - a, w = c - a, z = c - b;
+  const double area = 0.5 * (u.x() * w.y() - u.y() * w.x()) * std::sqrt(std::max(M.determinant(), 0.0));
+  const double l2 = u.dot(M * u) + w.dot(M * w) + z.dot(M * z);
+  return l2 > 0.0 ? 4.0 * std::sqrt(3.0) * area / l2 : 0.0;
+}
+
+// Edge swapping toward the metric: an interior edge shared by two triangles that form a convex
+// quadrilateral is replaced by the other diagonal when that raises the smaller metric quality of
+// the pair (metric: mean of the two elements' metrics; children inherit it). Boundary edges and
+// all vertices are kept.
+void swap_edges_core(const std::vector<Vector2d>& verts, std::vector<std::array<int, 3>>& tris, Metrics& metric, int passes) {
+  using Edge = std::pair<int, int>;
+  auto key = [](int a, int b) { return Edge(std::min(a, b), std::max(a, b)); };
+  for (int pass = 0; pass < passes; ++pass) {
+    std::map<Edge, std::vector<std::pair<int, int>>> owners;  // edge → (triangle, local k of edge (t[k], t[k+1]))
+    for (std::size_t t = 0; t < tris.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        owners[key(tris[t][static_cast<std::size_t>(k)], tris[t][static_cast<std::size_t>((k + 1) % 3)])].push_back({static_cast<int>(t), k});
+    std::vector<char> touched(tris.size(), 0);
+    int swaps = 0;
+    for (const auto& [edge, own] : owners) {
+      if (own.size() != 2) continue;
+      const auto [t1, k1] = own[0];
+      const auto [t2, k2] = own[1];
+      if (touched[static_cast<std::size_t>(t1)] || touched[static_cast<std::size_t>(t2)]) continue;
+      const auto& A = tris[static_cast<std::size_t>(t1)];
+      const auto& B = tris[static_cast<std::size_t>(t2)];
+      const int p = A[static_cast<std::size_t>(k1)], q = A[static_cast<std::size_t>((k1 + 1) % 3)];
+      const int c = A[static_cast<std::size_t>((k1 + 2) % 3)], d = B[static_cast<std::size_t>((k2 + 2) % 3)];
+      const Eigen::Matrix2d M = 0.5 * (metric[static_cast<std::size_t>(t1)] + metric[static_cast<std::size_t>(t2)]);
+      const Vector2d &xp = verts[static_cast<std::size_t>(p)], &xq = verts[static_cast<std::size_t>(q)],
+                     &xc = verts[static_cast<std::size_t>(c)], &xd = verts[static_cast<std::size_t>(d)];
+      // current: (p, q, c) and (q, p, d); swapped: (c, d, q)... both must be positive
+      const double before = std::min(metric_quality(xp, xq, xc, M), metric_quality(xq, xp, xd, M));
+      const double s1 = metric_quality(xc, xp, xd, M), s2 = metric_quality(xd, xq, xc, M);
+      if (s1 <= 0.0 || s2 <= 0.0) continue;  // not convex
+      auto signed_area = [&](const Vector2d& a, const Vector2d& b, const Vector2d& e) {
+        return (b - a).x() * (e - a).y() - (b - a).y() * (e - a).x();
+      };
+      const double scale = (xp - xq).squaredNorm() + (xc - xd).squaredNorm();
+      if (signed_area(xc, xp, xd) <= 1e-10 * scale || signed_area(xd, xq, xc) <= 1e-10 * scale) continue;
+      if (std::min(s1, s2) <= 1.05 * before) continue;
+      tris[static_cast<std::size_t>(t1)] = {c, p, d};
+      tris[static_cast<std::size_t>(t2)] = {d, q, c};
+      metric[static_cast<std::size_t>(t1)] = metric[static_cast<std::size_t>(t2)] = M;
+      touched[static_cast<std::size_t>(t1)] = touched[static_cast<std::size_t>(t2)] = 1;
+      ++swaps;
+    }
+    if (swaps == 0) break;
+  }
+}
+
+}  // namespace
+
+Mesh bisect_edges(const Mesh& mesh, const std::vector<std::array<int, 2>>& edges, const Metrics* metric) {
+  std::vector<Vector2d> verts;
+  std::vector<std::array<int, 3>> out;
+  std::vector<int> parent;
+  bisect_core(mesh, edges, metric, verts, out, parent);
+  return make_t6(verts, out);
+}
+
+Mesh swap_edges(const Mesh& mesh, const Metrics& metric, int passes) {
+  if (metric.size() != mesh.elements.size()) throw InputError("metric", "needs one matrix per element");
+  const VertexMesh v = vertex_mesh(mesh);
+  std::vector<std::array<int, 3>> tris = v.tris;
+  Metrics m = metric;
+  swap_edges_core(v.verts, tris, m, passes);
+  return make_t6(v.verts, tris);
+}
+
+Mesh refine_anisotropic(const Mesh& mesh, const std::vector<int>& marked, const Metrics& metric, double theta,
+                        int swap_passes) {
+  if (metric.size() != mesh.elements.size()) throw InputError("metric", "needs one matrix per element");
+  if (!(theta > 0.0 && theta <= 1.0)) throw InputError("theta", "must be in (0, 1]");
+  std::vector<std::array<int, 2>> edges;
+  for (int e : marked) {
+    if (e < 0 || e >= mesh.num_elements()) throw InputError("marked", "element index out of range");
+    const auto& el = mesh.elements[static_cast<std::size_t>(e)];
+    const Eigen::Matrix2d& M = metric[static_cast<std::size_t>(e)];
+    std::array<double, 3> l{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vector2d d = mesh.nodes[static_cast<std::size_t>(el[(k + 1) % 3])] - mesh.nodes[static_cast<std::size_t>(el[k])];
+      l[k] = std::sqrt(std::max(0.0, d.dot(M * d)));
+    }
+    const double lmax = *std::max_element(l.begin(), l.end());
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (l[k] >= theta * lmax * (1.0 - 1e-12)) edges.push_back({el[k], el[(k + 1) % 3]});
+    }
+  }
+  std::vector<Vector2d> verts;
+  std::vector<std::array<int, 3>> tris;
+  std::vector<int> parent;
+  bisect_core(mesh, edges, &metric, verts, tris, parent);
+  if (swap_passes > 0) {
+    Metrics child(tris.size());
+    for (std::size_t t = 0; t < tris.size(); ++t) child[t] = metric[static_cast<std::size_t>(parent[t])];
+    swap_edges_core(verts, tris, child, swap_passes);
+  }
+  return make_t6(verts, tris);
+}
+
+ElementShape element_shape(const Mesh& mesh, int e) {
+  const auto& el = mesh.elements.at(static_cast<std::size_t>(e));
+  const Vector2d a = mesh.nodes[static_cast<std::size_t>(el[0])], b = mesh.nodes[static_cast<std::size_t>(el[1])],
+                 c = mesh.nodes[static_cast<std::size_t>(el[2])];
+  const Vector2d g = (a + b + c) / 3.0;
+  // second moment of area of a triangle about its centroid: (A/12) Σ_vertices (x_i − g)(x_i − g)ᵀ
+  Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
+  for (const Vector2d& x : {a, b, c}) J += (x - g) * (x - g).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(J);
+  ElementShape s;
+  const double lmin = std::max(es.eigenvalues()[0], 0.0), lmax = es.eigenvalues()[1];
+  s.aspect = lmin > 0.0 ? std::sqrt(lmax / lmin) : std::numeric_limits<double>::infinity();
+  const Vector2d d = es.eigenvectors().col(1);
+  s.angle = std::atan2(d.y(), d.x());
+  if (s.angle > 0.5 * kPiMesh) s.angle -= kPiMesh;
+  if (s.angle <= -0.5 * kPiMesh) s.angle += kPiMesh;
+  return s;
 }
 
 std::vector<int> boundary_nodes(const Mesh& mesh, const std::function<bool(const Vector2d&)>& pred) {

@@ -225,7 +225,8 @@ SolverSpec cutting_spec() {
               p_int("contact_search", "unrestricted tool: 1 = grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact; 2 = natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)", 0, 0, 2),
               p_int("steady_state", "1: steady-state loop of Fig. 4 (phi <- min(phi*, phi_M)) around the solve (or the search)", 0, 0, 1),
               p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3),
-              p_int("adapt_steps", "dissipation-driven isotropic refinement steps (Doerfler 50%); fixed geometry only", 0, 0, 10)};
+              p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%); fixed geometry only", 0, 0, 10),
+              p_int("refine", "kind of the adaptive refinement: 0 isotropic (longest-edge bisection), 1 anisotropic (recovered Hessian of the dissipation density -> metric-directed bisection + edge swaps, stretched along the shear bands)", 0, 0, 1)};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
                {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
                {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},
@@ -247,6 +248,7 @@ SolverSpec cutting_spec() {
                {"max_sigma_eq_over_k", Dim::dimensionless, "max sqrt(J2)/k over all stress points"},
                {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},
                {"solves", Dim::dimensionless, "limit-analysis problems solved (Coulomb steps excluded)"},
+               {"elements", Dim::dimensionless, "elements of the (final) mesh"},
                {"coulomb_iterations", Dim::dimensionless, "fixed-point iterations on the contact pressure"},
                {"iterations", Dim::dimensionless, "interior-point iterations (last solve)"},
                {"kkt_dimension", Dim::dimensionless, "size of the KKT system"},
@@ -277,7 +279,13 @@ SolverSpec cutting_spec() {
       if (!search) {
         const int steps = as_int(v, "adapt_steps");
         solves += steps + 1;
-        if (steps > 0) return adapt_cutting(cs, steps, 0.5);
+        if (steps > 0) {
+          AdaptOptions opt;
+          opt.steps = steps;
+          opt.fraction = 0.5;
+          opt.anisotropic = as_int(v, "refine") == 1;
+          return adapt_cutting(cs, opt);
+        }
         return solve_cutting(cs);
       }
       if (search_mode == 2) {  // the long unilateral-contact solution, profile cut at l_sep
@@ -338,6 +346,7 @@ SolverSpec cutting_spec() {
     put("flux_rake_free", r.flux_rake_free, "1");
     put("streamline_force", r.streamline_force, "1");
     put("solves", solves, "1");
+    put("elements", r.model.mesh.num_elements(), "1");
     {
       // admissibility and plastification next to the contact
       const auto& sol = r.solution;

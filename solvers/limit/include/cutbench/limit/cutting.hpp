@@ -144,6 +144,9 @@ struct CuttingAdaptStep {
 };
 CuttingResult adapt_cutting(const CuttingSetup& setup, int steps, double fraction = 0.5,
                             std::vector<CuttingAdaptStep>* history = nullptr, const SocpSettings& settings = {});
+// The same with either refinement (AdaptOptions::anisotropic: metric-directed bisection).
+CuttingResult adapt_cutting(const CuttingSetup& setup, const AdaptOptions& opt,
+                            std::vector<CuttingAdaptStep>* history = nullptr, const SocpSettings& settings = {});
 CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& setup, const SocpSettings& settings = {});
 
 }  // namespace cutbench::limit

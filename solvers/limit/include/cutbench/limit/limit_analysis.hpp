@@ -116,12 +116,20 @@ LimitModel prandtl_punch_on_mesh(Mesh mesh, double half_width);
 std::vector<int> dorfler_mark(const LimitSolution& sol, int num_elements, double fraction);
 
 // Adaptive refinement driven by the plastic dissipation: solve, mark the elements carrying the
-// share `fraction` of the dissipation (Dörfler), bisect them (conforming longest-edge), rebuild
-// the model with `build`, repeat `steps` times. Isotropic (the paper's is anisotropic).
+// share `fraction` of the dissipation (Dörfler), bisect them, rebuild the model with `build`,
+// repeat `steps` times. Isotropic: conforming longest-edge bisection (`refine`). Anisotropic:
+// metric-directed bisection (`refine_anisotropic`) with the shape metric of the recovered Hessian
+// of the element dissipation density (edges crossing a shear band are cut, edges along it kept).
 struct AdaptOptions {
   int steps = 3;
   double fraction = 0.5;
+  bool anisotropic = false;
+  double max_aspect = 8.0;  // cap on the stretching of the shape metric
+  double theta = 0.75;      // bisect edges with metric length ≥ theta × the element's largest
+  int swap_passes = 3;      // anisotropic: edge-swapping passes toward the metric after each bisection
 };
+// One refinement step of either kind for a solved model (used by adapt_limit and adapt_cutting).
+Mesh adapt_mesh(const Mesh& mesh, const LimitSolution& sol, const AdaptOptions& opt);
 struct AdaptStep {
   int elements = 0;
   double collapse = 0.0;

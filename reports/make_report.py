@@ -119,6 +119,38 @@ def h5_xy(h5, line):
     return convert(x, xu, line.get("x_unit")), convert(y, yu, line.get("y_unit")) * line.get("y_scale", 1.0)
 
 
+def particle_spacing(x, y, sample=400):
+    """Median nearest-neighbour distance of a sample of points (the particle spacing of a lattice)."""
+    n = len(x)
+    if n < 2:
+        return 1.0
+    idx = np.linspace(0, n - 1, min(sample, n)).astype(int)
+    d = []
+    for i in idx:
+        r2 = (x - x[i]) ** 2 + (y - y[i]) ** 2
+        r2[i] = np.inf
+        d.append(math.sqrt(r2.min()))
+    return float(np.median(d))
+
+
+def draw_F_glyphs(ax, sx, sy, snap, c, plot):
+    """Deformation-gradient glyphs: each particle's domain, a square of the particle spacing in the
+    reference configuration, drawn deformed by its F (the parallelograms of Nairn 2015 Fig. 2)."""
+    from matplotlib.collections import PolyCollection
+    F = np.stack([snap[k][()] for k in ("F_xx", "F_xy", "F_yx", "F_yy")], axis=1).reshape(-1, 2, 2)
+    a = 0.5 * particle_spacing(sx, sy)
+    corners = np.array([[-a, -a], [a, -a], [a, a], [-a, a]])
+    verts = np.einsum("pij,cj->pci", F, corners) + np.stack([sx, sy], axis=1)[:, None, :]
+    pc = PolyCollection(verts, cmap=plot.get("cmap", "Greys"), edgecolors="0.25", linewidths=0.15)
+    if c is not None:
+        pc.set_array(np.asarray(c, dtype=float))
+    else:
+        pc.set_facecolor("0.85")
+    ax.add_collection(pc)
+    ax.autoscale_view()
+    return pc
+
+
 def draw_plot(case, plot, root, outdir):
     """Draw one [[plots]] entry; returns (png, svg) names or raises."""
     fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=110)
@@ -150,8 +182,11 @@ def draw_plot(case, plot, root, outdir):
             # snapshot positions are stored in metres; draw them in the unit named in the axis label
             sx = convert(snap["x"][()], "m", axis_unit(plot.get("xlabel", ""), "mm"))
             sy = convert(snap["y"][()], "m", axis_unit(plot.get("ylabel", ""), "mm"))
-            sc = ax.scatter(sx, sy, c=c, s=plot.get("size", 2),
-                            cmap=plot.get("cmap", "Greys"), marker="s", linewidths=0)
+            if plot.get("glyphs") == "F" and all(k in snap for k in ("F_xx", "F_xy", "F_yx", "F_yy")):
+                sc = draw_F_glyphs(ax, sx, sy, snap, c, plot)
+            else:
+                sc = ax.scatter(sx, sy, c=c, s=plot.get("size", 2),
+                                cmap=plot.get("cmap", "Greys"), marker="s", linewidths=0)
             if c is not None:
                 fig.colorbar(sc, ax=ax, label=field)
             ax.set_aspect("equal")

@@ -39,7 +39,9 @@ public:
   // Relative singularity thresholds on det(b) and det of the 3x3 system (both O(1) in the interior).
   explicit FmfsLaplacian(double det_tolerance = 1e-8) : det_tol_(det_tolerance) {}
 
-  void update(const ParticleView& p);
+  // `needed` (optional): particles with needed[i] == 0 are skipped and left irregular (for callers
+  // that use Brookshaw there anyway).
+  void update(const ParticleView& p, const std::vector<char>* needed = nullptr);
 
   std::size_t size() const { return regular_.size(); }
   bool regular(std::size_t i) const { return regular_[i] != 0; }

@@ -25,15 +25,35 @@ std::vector<Mat2> renormalisation_matrices(const ParticleView& p) {
     Mat2 l = Mat2::Zero();
     for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
       const std::size_t j = p.neighbours.index[k];
-      const Vec2 xij = p.x[i] - p.x[j];
-      const double r2 = xij.squaredNorm();
-      if (r2 >= s2) continue;  // outside the support (lists may carry a skin): no contribution
-      const double r = std::sqrt(r2);
-      l.noalias() -= (xij * p.kernel.gradient(xij, r).transpose()) * p.volume[j];
+      Vec2 xij;
+      double r, dw;
+      // outside the support (lists may carry a skin): no contribution
+      if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;
+      l.noalias() -= (xij * ((dw / r) * xij).transpose()) * p.volume[j];
     }
     out[i] = l;
   }
   return out;
+}
+
+void fill_pair_geometry(const ParticleView& p, std::vector<double>& r, std::vector<double>& dwdr) {
+  const NeighbourList& nl = p.neighbours;
+  r.resize(nl.index.size());
+  dwdr.resize(nl.index.size());
+  const double s2 = p.kernel.support() * p.kernel.support();
+  const std::size_t n = p.x.size();
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = nl.begin(i); k < nl.end(i); ++k) {
+      const double r2 = (p.x[i] - p.x[nl.index[k]]).squaredNorm();
+      if (r2 >= s2) {
+        r[k] = -1.0;
+        dwdr[k] = 0.0;
+      } else {
+        r[k] = std::sqrt(r2);
+        dwdr[k] = p.kernel.dwdr(r[k]);
+      }
+    }
 }
 
 double smallest_eigenvalue(const Mat2& m) {
@@ -48,11 +68,11 @@ double laplacian_brookshaw_at(const ParticleView& p, const std::vector<double>& 
   const double s2 = p.kernel.support() * p.kernel.support();
   for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
     const std::size_t j = p.neighbours.index[k];
-    const double r2 = (p.x[i] - p.x[j]).squaredNorm();
-    if (r2 >= s2) continue;  // outside the support
-    const double r = std::sqrt(r2);
+    Vec2 xij;
+    double r, dw;
+    if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;  // outside the support
     // e_ij . grad W_ij = dW/dr
-    s += 2.0 * (f[i] - f[j]) / r * p.kernel.dwdr(r) * p.volume[j];
+    s += 2.0 * (f[i] - f[j]) / r * dw * p.volume[j];
   }
   return s;
 }
@@ -85,12 +105,12 @@ void FmfsLaplacian::update(const ParticleView& p, const std::vector<char>* neede
     if (needed && !(*needed)[i]) continue;  // left irregular: the caller uses Brookshaw here
     for (std::size_t kk = p.neighbours.begin(i); kk < p.neighbours.end(i); ++kk) {
       const std::size_t j = p.neighbours.index[kk];
-      const Vec2 xij = p.x[i] - p.x[j];
-      const double r2 = xij.squaredNorm();
-      if (r2 >= s2) continue;  // outside the support: every term carries grad W = 0
-      const double r = std::sqrt(r2);
+      Vec2 xij;
+      double r, dw;
+      // outside the support: every term carries grad W = 0
+      if (!detail::pair_geometry(p, i, j, kk, s2, xij, r, dw)) continue;
       const Vec2 eij = xij / r;
-      const Vec2 gw = p.kernel.gradient(xij, r) * p.volume[j];  // V_j grad W_ij
+      const Vec2 gw = ((dw / r) * xij) * p.volume[j];  // V_j grad W_ij
       b.noalias() += gw * xij.transpose();
       // a, c, e are symmetric in (q1, q2): accumulate q1 <= q2 (the products are the same
       // floating-point numbers either way), mirror below
@@ -151,10 +171,10 @@ Vec2 FmfsLaplacian::gradient_at(const ParticleView& p, const std::vector<double>
   const double s2 = p.kernel.support() * p.kernel.support();
   for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
     const std::size_t j = p.neighbours.index[k];
-    const Vec2 xij = p.x[i] - p.x[j];
-    const double r2 = xij.squaredNorm();
-    if (r2 >= s2) continue;  // outside the support
-    g.noalias() += ((f[j] - f[i]) * p.volume[j]) * p.kernel.gradient(xij, std::sqrt(r2));
+    Vec2 xij;
+    double r, dw;
+    if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;  // outside the support
+    g.noalias() += ((f[j] - f[i]) * p.volume[j]) * ((dw / r) * xij);
   }
   return corr_[i] * g;
 }
@@ -176,13 +196,12 @@ double FmfsLaplacian::laplacian_at(const ParticleView& p, const std::vector<doub
   const double s2 = p.kernel.support() * p.kernel.support();
   for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
     const std::size_t j = p.neighbours.index[k];
-    const Vec2 xij = p.x[i] - p.x[j];
-    const double r2 = xij.squaredNorm();
-    if (r2 >= s2) continue;  // outside the support
-    const double r = std::sqrt(r2);
+    Vec2 xij;
+    double r, dw;
+    if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;  // outside the support
     const Vec2 eij = xij / r;
     const double bracket = (f[i] - f[j]) / r - eij.dot(g);
-    t.noalias() += (2.0 * p.volume[j] * bracket) * (eij * p.kernel.gradient(xij, r).transpose());
+    t.noalias() += (2.0 * p.volume[j] * bracket) * (eij * ((dw / r) * xij).transpose());
   }
   return bhat_[i].cwiseProduct(t).sum();
 }

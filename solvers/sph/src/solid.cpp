@@ -145,7 +145,8 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   const double dt_th = th_dt_acc_ / sub;
   th_dt_acc_ = 0.0;
   th_steps_ = 0;
-  const ParticleView view{x_, vol, nl_, kernel_};
+  fill_pair_geometry(ParticleView{x_, vol, nl_, kernel_}, heat_pair_r_, heat_pair_dwdr_);
+  const ParticleView view{x_, vol, nl_, kernel_, &heat_pair_r_, &heat_pair_dwdr_};
   surface_ = detect_free_surface(view, th_.surface);
   std::vector<char> use_fmfs, loss;
   heat_masks(nl_, surface_, t_fixed_, th_.brookshaw_band, use_fmfs, loss);

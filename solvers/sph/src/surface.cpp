@@ -31,10 +31,11 @@ SurfaceDetection detect_free_surface(const ParticleView& p, const SurfaceOptions
     Vec2 s = Vec2::Zero();
     for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
       const std::size_t j = p.neighbours.index[k];
-      const Vec2 xij = p.x[i] - p.x[j];
-      const double r2 = xij.squaredNorm();
-      if (r2 >= s2) continue;  // outside the support (lists may carry a skin)
-      s.noalias() += p.kernel.gradient(xij, std::sqrt(r2)) * p.volume[j];
+      Vec2 xij;
+      double r, dw;
+      // outside the support (lists may carry a skin)
+      if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;
+      s.noalias() += ((dw / r) * xij) * p.volume[j];
     }
     Vec2 nu = -s;
     if (std::abs(l[i].determinant()) > 1e-12) nu = -(l[i].inverse() * s);

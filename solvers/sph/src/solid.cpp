@@ -256,8 +256,7 @@ void SolidSph::update_neighbours() {
     half_index_.insert(half_index_.end(), std::upper_bound(first, last, static_cast<std::uint32_t>(i)), last);
     half_offset_[i + 1] = half_index_.size();
   }
-  pair_gw_.resize(half_index_.size());
-  pair_w_.resize(half_index_.size());
+  pairs_.resize(half_index_.size());
   x_listed_ = x_;
   ++builds_;
 }
@@ -283,13 +282,20 @@ void SolidSph::accelerations() {
   const std::size_t n = x_.size();
   const double K = mat_.bulk(), c0 = mat_.bulk_speed(), h = kernel_.h(), support = kernel_.support();
   const double support2 = support * support;
-  fdata_.resize(n);
+  pdata_.resize(n);
   const double eps_art = opt_.artificial_stress;
   for (std::size_t i = 0; i < n; ++i) {
     const double p = K * (rho_[i] / mat_.density - 1.0);
     const double inv_r2 = 1.0 / (rho_[i] * rho_[i]);
     const double sxx = S_[i](0, 0) - p, syy = S_[i](1, 1) - p, sxy = S_[i](0, 1);
-    ForceData& f = fdata_[i];
+    ParticleData& f = pdata_[i];
+    f.x = x_[i].x();
+    f.y = x_[i].y();
+    f.vx = v_[i].x();
+    f.vy = v_[i].y();
+    f.rho = rho_[i];
+    f.m = m_[i];
+    f.vol = m_[i] / rho_[i];
     f.sxx = sxx * inv_r2;
     f.sxy = sxy * inv_r2;
     f.syy = syy * inv_r2;
@@ -318,34 +324,36 @@ void SolidSph::accelerations() {
   // in thread order: deterministic for a fixed thread count.
   const bool visc = opt_.alpha_visc > 0.0 || opt_.beta_visc > 0.0;
   const double inv_wdx = 1.0 / w_dx_;
-  auto row = [&](std::size_t i, Vec2* acc) {
-    const Vec2 xi = x_[i], vi = v_[i];
-    const ForceData fi = fdata_[i];
-    const double mi = m_[i], rhoi = rho_[i];
-    Vec2 acc_i = Vec2::Zero();
-    for (std::size_t k = half_offset_[i]; k < half_offset_[i + 1]; ++k) {
-      const std::size_t j = half_index_[k];
-      const Vec2 xij = xi - x_[j];
-      const double r2 = xij.squaredNorm();
+  const double eta2 = 0.01 * h * h, minus_alpha_c0 = -opt_.alpha_visc * c0, beta = opt_.beta_visc;
+  const ParticleData* const pd = pdata_.data();
+  const std::uint32_t* const hidx = half_index_.data();
+  const std::size_t* const hoff = half_offset_.data();
+  PairData* const pairs = pairs_.data();
+  const CubicSpline2D kernel = kernel_;
+  auto row = [=](std::size_t i, Vec2* acc) {
+    const ParticleData fi = pd[i];
+    double ax = 0.0, ay = 0.0;
+    for (std::size_t k = hoff[i]; k < hoff[i + 1]; ++k) {
+      const std::size_t j = hidx[k];
+      const ParticleData& fj = pd[j];
+      const double xx = fi.x - fj.x, xy = fi.y - fj.y;
+      const double r2 = xx * xx + xy * xy;
       if (r2 >= support2) {  // listed through the Verlet skin, outside the kernel support
-        pair_w_[k] = 0.0;
-        pair_gw_[k] = Vec2::Zero();
+        pairs[k] = PairData{0.0, 0.0, 0.0};
         continue;
       }
       const double r = std::sqrt(r2);
       double wij, dw;
-      kernel_.value_dwdr(r, wij, dw);
-      const Vec2 gw = (dw / r) * xij;
-      pair_gw_[k] = gw;
-      pair_w_[k] = wij;
-      const ForceData& fj = fdata_[j];
+      kernel.value_dwdr(r, wij, dw);
+      const double dwr = dw / r;
+      const double gx = dwr * xx, gy = dwr * xy;
+      pairs[k] = PairData{gx, gy, wij};
       double txx = fi.sxx + fj.sxx, txy = fi.sxy + fj.sxy, tyy = fi.syy + fj.syy;
-      const Vec2 vij = vi - v_[j];
-      const double vr = vij.dot(xij);
+      const double vr = (fi.vx - fj.vx) * xx + (fi.vy - fj.vy) * xy;
       if (visc) {  // Monaghan viscosity on approaching pairs (vr < 0), selected without a branch
-        const double mu = h * vr / (r2 + 0.01 * h * h);
-        const double rhobar = 0.5 * (rhoi + rho_[j]);
-        const double pi0 = (-opt_.alpha_visc * c0 * mu + opt_.beta_visc * mu * mu) / rhobar;
+        const double mu = h * vr / (r2 + eta2);
+        const double rhobar = 0.5 * (fi.rho + fj.rho);
+        const double pi0 = (minus_alpha_c0 * mu + beta * mu * mu) / rhobar;
         const double pi = vr < 0.0 ? pi0 : 0.0;
         txx -= pi;
         tyy -= pi;
@@ -358,11 +366,14 @@ void SolidSph::accelerations() {
         txy += f4 * (fi.axy + fj.axy);
         tyy += f4 * (fi.ayy + fj.ayy);
       }
-      const Vec2 tg(txx * gw.x() + txy * gw.y(), txy * gw.x() + tyy * gw.y());
-      acc_i.noalias() += m_[j] * tg;
-      acc[j].noalias() -= mi * tg;
+      const double tgx = txx * gx + txy * gy, tgy = txy * gx + tyy * gy;
+      ax += fj.m * tgx;
+      ay += fj.m * tgy;
+      acc[j].x() -= fi.m * tgx;
+      acc[j].y() -= fi.m * tgy;
     }
-    acc[i] += acc_i;
+    acc[i].x() += ax;
+    acc[i].y() += ay;
   };
   acc_.assign(n, Vec2::Zero());
   auto& acc = acc_;
@@ -394,8 +405,12 @@ void SolidSph::step(double dt) {
   rho_new_.resize(n);
   s_new_.resize(n);
   plastic_dT_.assign(n, 0.0);
-  vol_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) vol_[i] = m_[i] / rho_[i];
+  // velocities after the kick into the packed particle data (positions, densities and volumes are
+  // those of x^n, filled by accelerations())
+  for (std::size_t i = 0; i < n; ++i) {
+    pdata_[i].vx = v_[i].x();
+    pdata_[i].vy = v_[i].y();
+  }
   auto& xsph = xsph_;
   auto& rho_new = rho_new_;
   auto& s_new = s_new_;
@@ -407,55 +422,79 @@ void SolidSph::step(double dt) {
   //   (grad v)_i += V_j dv (x) gradW_ij,  (grad v)_j += V_i dv (x) gradW_ij,
   //   L_i -= V_j x_ij (x) gradW_ij,       L_j -= V_i x_ij (x) gradW_ij,
   //   xs_i += m_j / rhobar W dv,           xs_j -= m_i / rhobar W dv.
-  auto row = [&](std::size_t i, Mat2* gv, Vec2* xs, Mat2* lr) {
-    const Vec2 xi = x_[i], vi = v_[i];
-    const double vi_vol = vol_[i], mi = m_[i], rhoi = rho_[i];
-    Mat2 gv_i = Mat2::Zero(), lr_i = Mat2::Zero();
-    Vec2 xs_i = Vec2::Zero();
-    for (std::size_t k = half_offset_[i]; k < half_offset_[i + 1]; ++k) {
-      const double w = pair_w_[k];
-      if (w == 0.0) continue;  // outside the support (Verlet skin): W = 0, grad W = 0
-      const std::size_t j = half_index_[k];
-      const Vec2& gw = pair_gw_[k];
-      const Vec2 dv = v_[j] - vi;
-      const Mat2 o = dv * gw.transpose();
-      gv_i.noalias() += vol_[j] * o;
-      gv[j].noalias() += vi_vol * o;
+  const ParticleData* const pd = pdata_.data();
+  const std::uint32_t* const hidx = half_index_.data();
+  const std::size_t* const hoff = half_offset_.data();
+  const PairData* const pairs = pairs_.data();
+  auto row = [=](std::size_t i, RateAcc* ra, Mat2* lr) {
+    const ParticleData fi = pd[i];
+    RateAcc acc_i{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    Mat2 lr_i = Mat2::Zero();
+    for (std::size_t k = hoff[i]; k < hoff[i + 1]; ++k) {
+      const PairData pk = pairs[k];
+      if (pk.w == 0.0) continue;  // outside the support (Verlet skin): W = 0, grad W = 0
+      const std::size_t j = hidx[k];
+      const ParticleData& fj = pd[j];
+      const double dvx = fj.vx - fi.vx, dvy = fj.vy - fi.vy;
+      const double o00 = dvx * pk.gx, o01 = dvx * pk.gy, o10 = dvy * pk.gx, o11 = dvy * pk.gy;
+      acc_i.g00 += fj.vol * o00;
+      acc_i.g01 += fj.vol * o01;
+      acc_i.g10 += fj.vol * o10;
+      acc_i.g11 += fj.vol * o11;
+      RateAcc& aj = ra[j];
+      aj.g00 += fi.vol * o00;
+      aj.g01 += fi.vol * o01;
+      aj.g10 += fi.vol * o10;
+      aj.g11 += fi.vol * o11;
       if (corr) {
-        const Mat2 ol = (xi - x_[j]) * gw.transpose();
-        lr_i.noalias() -= vol_[j] * ol;
-        lr[j].noalias() -= vi_vol * ol;
+        const Mat2 ol = Vec2(fi.x - fj.x, fi.y - fj.y) * Vec2(pk.gx, pk.gy).transpose();
+        lr_i.noalias() -= fj.vol * ol;
+        lr[j].noalias() -= fi.vol * ol;
       }
       if (use_xsph) {
-        const Vec2 wdv = (w / (0.5 * (rhoi + rho_[j]))) * dv;
-        xs_i.noalias() += m_[j] * wdv;
-        xs[j].noalias() -= mi * wdv;
+        const double c = pk.w / (0.5 * (fi.rho + fj.rho));
+        const double wx = c * dvx, wy = c * dvy;
+        acc_i.sx += fj.m * wx;
+        acc_i.sy += fj.m * wy;
+        aj.sx -= fi.m * wx;
+        aj.sy -= fi.m * wy;
       }
     }
-    gv[i] += gv_i;
-    xs[i] += xs_i;
+    RateAcc& ai = ra[i];
+    ai.g00 += acc_i.g00;
+    ai.g01 += acc_i.g01;
+    ai.g10 += acc_i.g10;
+    ai.g11 += acc_i.g11;
+    ai.sx += acc_i.sx;
+    ai.sy += acc_i.sy;
     if (corr) lr[i] += lr_i;
   };
-  gradv_.assign(n, Mat2::Zero());
-  xsph_.assign(n, Vec2::Zero());
+  const RateAcc zero{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  racc_.assign(n, zero);
+  xsph_.resize(n);
   if (corr) lren_.assign(n, Mat2::Zero());
   if (n < detail::kOmpMinParticles) {
-    for (std::size_t i = 0; i < n; ++i) row(i, gradv_.data(), xsph_.data(), lren_.data());
+    for (std::size_t i = 0; i < n; ++i) row(i, racc_.data(), lren_.data());
   } else {
     const auto nt = static_cast<std::size_t>(max_threads());
-    prepare_parts(gradv_part_, nt, n, Mat2(Mat2::Zero()));
-    prepare_parts(xsph_part_, nt, n, Vec2(Vec2::Zero()));
+    prepare_parts(racc_part_, nt, n, zero);
     prepare_parts(lren_part_, nt, corr ? n : 0, Mat2(Mat2::Zero()));
 #pragma omp parallel
     {
       const auto t = static_cast<std::size_t>(omp_get_thread_num());
 #pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) row(i, gradv_part_[t].data(), xsph_part_[t].data(), lren_part_[t].data());
+      for (std::size_t i = 0; i < n; ++i) row(i, racc_part_[t].data(), lren_part_[t].data());
     }
     for (std::size_t t = 0; t < nt; ++t)
       for (std::size_t i = 0; i < n; ++i) {
-        gradv_[i] += gradv_part_[t][i];
-        xsph_[i] += xsph_part_[t][i];
+        const RateAcc& p = racc_part_[t][i];
+        RateAcc& q = racc_[i];
+        q.g00 += p.g00;
+        q.g01 += p.g01;
+        q.g10 += p.g10;
+        q.g11 += p.g11;
+        q.sx += p.sx;
+        q.sy += p.sy;
         if (corr) lren_[i] += lren_part_[t][i];
       }
   }
@@ -463,9 +502,11 @@ void SolidSph::step(double dt) {
   // out-of-plane shears stay zero); spin W = [[0, w], [-w, 0]] with w = (grad v)_[xy] antisymmetric part.
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
-    Mat2 gv = gradv_[i];
+    const RateAcc& ra = racc_[i];
+    Mat2 gv;
+    gv << ra.g00, ra.g01, ra.g10, ra.g11;
     if (corr && std::abs(lren_[i].determinant()) > 1e-6) gv = gv * lren_[i].inverse();
-    xsph[i] *= opt_.xsph;
+    xsph[i] = opt_.xsph * Vec2(ra.sx, ra.sy);
     const double dxx = gv(0, 0), dyy = gv(1, 1), dxy = 0.5 * (gv(0, 1) + gv(1, 0)), w = 0.5 * (gv(0, 1) - gv(1, 0));
     const double trd = dxx + dyy;
     rho_new[i] = rho_[i] * (1.0 - dt * trd);

@@ -144,21 +144,29 @@ private:
   // Per half pair: grad_i W_ij and W_ij at the current positions (filled by accelerations(),
   // reused by the rate pass of the next step: same positions); W = 0 marks a pair outside the
   // support (listed through the Verlet skin).
-  std::vector<Vec2> pair_gw_;
-  std::vector<double> pair_w_;
-  // per-particle force data: sigma/rho^2 and artificial stress R, in-plane, (xx, xy, yy)
-  struct ForceData {
-    double sxx, sxy, syy, axx, axy, ayy;
+  struct PairData {
+    double gx, gy, w;
   };
-  std::vector<ForceData> fdata_;
+  std::vector<PairData> pairs_;
+  // per-particle data of the pair loops, packed for locality: position, velocity, density, mass,
+  // volume, sigma/rho^2 and artificial stress R, in-plane (xx, xy, yy)
+  struct ParticleData {
+    double x, y, vx, vy, rho, m, vol, sxx, sxy, syy, axx, axy, ayy;
+  };
+  std::vector<ParticleData> pdata_;
   // per-step work buffers (kept to avoid allocation in the time loop); per-thread accumulators
   // for the symmetric pair passes (summed in thread order)
+  struct RateAcc {
+    double g00, g01, g10, g11, sx, sy;  // velocity gradient and XSPH sums
+  };
   std::vector<Stress3> s_new_;
   std::vector<Vec2> acc_, xsph_;
-  std::vector<Mat2> gradv_, lren_;
-  std::vector<double> rho_new_, plastic_dT_, vol_;
-  std::vector<std::vector<Vec2>> acc_part_, xsph_part_;
-  std::vector<std::vector<Mat2>> gradv_part_, lren_part_;
+  std::vector<RateAcc> racc_;
+  std::vector<Mat2> lren_;
+  std::vector<double> rho_new_, plastic_dT_;
+  std::vector<std::vector<Vec2>> acc_part_;
+  std::vector<std::vector<RateAcc>> racc_part_;
+  std::vector<std::vector<Mat2>> lren_part_;
   // contact screening: relative position (particle - tool) and gap at the last evaluation of the
   // tool's signed distance; the distance is 1-Lipschitz, so while |p - p_last| < gap_last the
   // particle cannot touch the tool and the evaluation is skipped (exact)

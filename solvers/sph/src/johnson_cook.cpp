@@ -39,7 +39,7 @@ double JohnsonCook::d_rate(double eps_p, double eps_rate_p, double T) const {
 double von_mises(const Stress3& s) { return std::sqrt(1.5 * (s.array() * s.array()).sum()); }
 
 ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G, double eps_p, double dt,
-                           double T) {
+                           double T, double guess) {
   if (!(G > 0.0) || !(dt > 0.0)) throw InputError("radial_return", "G and dt must be positive");
   ReturnResult res;
   res.deviator = trial;
@@ -69,7 +69,8 @@ ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G
   };
   // Bracket: residual(0) > 0, residual(q / 3G) <= 0 since sigma_y >= 0.
   double lo = 0.0, hi = q / (3.0 * G);
-  double d = std::min(hi, (q - y0) / (3.0 * G));  // perfectly plastic first guess
+  // first iterate: the caller's guess inside the bracket, else the perfectly plastic increment
+  double d = guess > 0.0 && guess < hi ? guess : std::min(hi, (q - y0) / (3.0 * G));
   for (int it = 1; it <= 100; ++it) {
     const Eval ev = eval(d);
     const double r = q - 3.0 * G * d - ev.y;

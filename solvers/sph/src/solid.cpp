@@ -469,6 +469,7 @@ void SolidSph::step(double dt) {
     ai.sy += acc_i.sy;
     if (corr) lr[i] += lr_i;
   };
+  if (last_dep_.size() != n) last_dep_.assign(n, 0.0);
   const RateAcc zero{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   racc_.assign(n, zero);
   xsph_.resize(n);
@@ -524,9 +525,11 @@ void SolidSph::step(double dt) {
       const double q = std::sqrt(1.5 * (s(0, 0) * s(0, 0) + s(1, 1) * s(1, 1) + s(2, 2) * s(2, 2) +
                                         2.0 * s(0, 1) * s(0, 1)));
       if (q > yield_floor(T_[i])) {
-        const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i]);
+        // warm start from the particle's increment of its last plastic step
+        const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i], last_dep_[i]);
         s = rr.deviator;
         eps_p_[i] += rr.delta_eps_p;
+        last_dep_[i] = rr.delta_eps_p;
         plastic_dT[i] = chi_rc * rr.flow_stress * rr.delta_eps_p;
       }
     }

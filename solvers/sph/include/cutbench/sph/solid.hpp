@@ -164,6 +164,7 @@ private:
   std::vector<RateAcc> racc_;
   std::vector<Mat2> lren_;
   std::vector<double> rho_new_, plastic_dT_;
+  std::vector<double> last_dep_;  // plastic strain increment of each particle's last plastic step
   std::vector<std::vector<Vec2>> acc_part_;
   std::vector<std::vector<RateAcc>> racc_part_;
   std::vector<std::vector<Mat2>> lren_part_;

@@ -39,24 +39,44 @@ double JohnsonCook::d_rate(double eps_p, double eps_rate_p, double T) const {
 double von_mises(const Stress3& s) { return std::sqrt(1.5 * (s.array() * s.array()).sum()); }
 
 ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G, double eps_p, double dt,
-                           double T) {
+                           double T, double guess) {
   if (!(G > 0.0) || !(dt > 0.0)) throw InputError("radial_return", "G and dt must be positive");
   ReturnResult res;
   res.deviator = trial;
   const double q = von_mises(trial);
-  const double y0 = jc.flow_stress(eps_p, 0.0, T);
+  // The thermal factor is fixed during the return; per iterate one pow (eps^n, with
+  // eps^(n-1) = eps^n / eps) and one log give sigma_y and both derivatives (same formulas as
+  // flow_stress, d_strain and d_rate).
+  const double tf = thermal_factor(jc, T);
+  const double y0 = strain_factor(jc, eps_p) * tf;  // rate factor 1 at zero rate
   res.flow_stress = y0;
   if (q <= y0) return res;
   res.plastic = true;
-  auto residual = [&](double d) { return q - 3.0 * G * d - jc.flow_stress(eps_p + d, d / dt, T); };
+  struct Eval {
+    double y, slope;  // sigma_y and d sigma_y / d(d) (strain and rate terms)
+  };
+  auto eval = [&](double d) {
+    const double e = eps_p + d, rate = d / dt;
+    const double en = e > 0.0 ? std::pow(e, jc.n) : 0.0;
+    const double sf = jc.A + jc.B * en;
+    const double rr = rate / jc.eps_rate_ref;
+    const double rf = rr > 1.0 ? 1.0 + jc.C * std::log(rr) : 1.0;
+    const double e_min = 1e-12;
+    const double en1 = e > e_min ? en / e : std::pow(e_min, jc.n - 1.0);
+    const double ds = jc.B * jc.n * en1 * rf * tf;
+    const double dr = rate <= jc.eps_rate_ref ? 0.0 : sf * jc.C / rate * tf;
+    return Eval{sf * rf * tf, ds + dr / dt};
+  };
   // Bracket: residual(0) > 0, residual(q / 3G) <= 0 since sigma_y >= 0.
   double lo = 0.0, hi = q / (3.0 * G);
-  double d = std::min(hi, (q - y0) / (3.0 * G));  // perfectly plastic first guess
+  // first iterate: the caller's guess inside the bracket, else the perfectly plastic increment
+  double d = guess > 0.0 && guess < hi ? guess : std::min(hi, (q - y0) / (3.0 * G));
   for (int it = 1; it <= 100; ++it) {
-    const double r = residual(d);
+    const Eval ev = eval(d);
+    const double r = q - 3.0 * G * d - ev.y;
     res.iterations = it;
     if (r > 0.0) lo = d; else hi = d;
-    const double slope = -3.0 * G - jc.d_strain(eps_p + d, d / dt, T) - jc.d_rate(eps_p + d, d / dt, T) / dt;
+    const double slope = -3.0 * G - ev.slope;
     double next = d - r / slope;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     if (std::abs(next - d) <= 1e-14 * std::max(1e-12, next) || hi - lo <= 1e-15 * hi) {
@@ -66,7 +86,7 @@ ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G
     d = next;
   }
   res.delta_eps_p = d;
-  res.flow_stress = jc.flow_stress(eps_p + d, d / dt, T);
+  res.flow_stress = eval(d).y;
   res.deviator = trial * (1.0 - 3.0 * G * d / q);
   return res;
 }

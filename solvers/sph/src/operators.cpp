@@ -19,18 +19,41 @@ std::vector<Mat2> renormalisation_matrices(const ParticleView& p) {
   check_sizes(p);
   const std::size_t n = p.x.size();
   std::vector<Mat2> out(n);
+  const double s2 = p.kernel.support() * p.kernel.support();
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     Mat2 l = Mat2::Zero();
     for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
       const std::size_t j = p.neighbours.index[k];
-      const Vec2 xij = p.x[i] - p.x[j];
-      const double r = xij.norm();
-      l.noalias() -= (xij * p.kernel.gradient(xij, r).transpose()) * p.volume[j];
+      Vec2 xij;
+      double r, dw;
+      // outside the support (lists may carry a skin): no contribution
+      if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;
+      l.noalias() -= (xij * ((dw / r) * xij).transpose()) * p.volume[j];
     }
     out[i] = l;
   }
   return out;
+}
+
+void fill_pair_geometry(const ParticleView& p, std::vector<double>& r, std::vector<double>& dwdr) {
+  const NeighbourList& nl = p.neighbours;
+  r.resize(nl.index.size());
+  dwdr.resize(nl.index.size());
+  const double s2 = p.kernel.support() * p.kernel.support();
+  const std::size_t n = p.x.size();
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = nl.begin(i); k < nl.end(i); ++k) {
+      const double r2 = (p.x[i] - p.x[nl.index[k]]).squaredNorm();
+      if (r2 >= s2) {
+        r[k] = -1.0;
+        dwdr[k] = 0.0;
+      } else {
+        r[k] = std::sqrt(r2);
+        dwdr[k] = p.kernel.dwdr(r[k]);
+      }
+    }
 }
 
 double smallest_eigenvalue(const Mat2& m) {
@@ -42,11 +65,14 @@ double smallest_eigenvalue(const Mat2& m) {
 
 double laplacian_brookshaw_at(const ParticleView& p, const std::vector<double>& f, std::size_t i) {
   double s = 0.0;
+  const double s2 = p.kernel.support() * p.kernel.support();
   for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
     const std::size_t j = p.neighbours.index[k];
-    const double r = (p.x[i] - p.x[j]).norm();
+    Vec2 xij;
+    double r, dw;
+    if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;  // outside the support
     // e_ij . grad W_ij = dW/dr
-    s += 2.0 * (f[i] - f[j]) / r * p.kernel.dwdr(r) * p.volume[j];
+    s += 2.0 * (f[i] - f[j]) / r * dw * p.volume[j];
   }
   return s;
 }
@@ -61,9 +87,11 @@ std::vector<double> laplacian_brookshaw(const ParticleView& p, const std::vector
   return out;
 }
 
-void FmfsLaplacian::update(const ParticleView& p) {
+void FmfsLaplacian::update(const ParticleView& p, const std::vector<char>* needed) {
   check_sizes(p);
   const std::size_t n = p.x.size();
+  if (needed && needed->size() != n) throw InputError("needed", "size differs from the particle count");
+  const double s2 = p.kernel.support() * p.kernel.support();
   corr_.assign(n, Mat2::Zero());
   bhat_.assign(n, Mat2::Zero());
   regular_.assign(n, 0);
@@ -74,20 +102,32 @@ void FmfsLaplacian::update(const ParticleView& p) {
     double a[2][2][2] = {};
     double c[2][2][2] = {};
     double e[2][2][2][2] = {};
+    if (needed && !(*needed)[i]) continue;  // left irregular: the caller uses Brookshaw here
     for (std::size_t kk = p.neighbours.begin(i); kk < p.neighbours.end(i); ++kk) {
       const std::size_t j = p.neighbours.index[kk];
-      const Vec2 xij = p.x[i] - p.x[j];
-      const double r = xij.norm();
+      Vec2 xij;
+      double r, dw;
+      // outside the support: every term carries grad W = 0
+      if (!detail::pair_geometry(p, i, j, kk, s2, xij, r, dw)) continue;
       const Vec2 eij = xij / r;
-      const Vec2 gw = p.kernel.gradient(xij, r) * p.volume[j];  // V_j grad W_ij
+      const Vec2 gw = ((dw / r) * xij) * p.volume[j];  // V_j grad W_ij
       b.noalias() += gw * xij.transpose();
+      // a, c, e are symmetric in (q1, q2): accumulate q1 <= q2 (the products are the same
+      // floating-point numbers either way), mirror below
       for (int q1 = 0; q1 < 2; ++q1)
-        for (int q2 = 0; q2 < 2; ++q2)
+        for (int q2 = q1; q2 < 2; ++q2) {
+          const double ee = eij[q1] * eij[q2], xx = xij[q1] * xij[q2];
           for (int q3 = 0; q3 < 2; ++q3) {
-            a[q1][q2][q3] += eij[q1] * eij[q2] * gw[q3];
-            c[q1][q2][q3] += xij[q1] * xij[q2] * gw[q3];
-            for (int q4 = 0; q4 < 2; ++q4) e[q1][q2][q3][q4] += eij[q1] * eij[q2] * xij[q3] * gw[q4];
+            a[q1][q2][q3] += ee * gw[q3];
+            c[q1][q2][q3] += xx * gw[q3];
+            for (int q4 = 0; q4 < 2; ++q4) e[q1][q2][q3][q4] += ee * xij[q3] * gw[q4];
           }
+        }
+    }
+    for (int q3 = 0; q3 < 2; ++q3) {
+      a[1][0][q3] = a[0][1][q3];
+      c[1][0][q3] = c[0][1][q3];
+      for (int q4 = 0; q4 < 2; ++q4) e[1][0][q3][q4] = e[0][1][q3][q4];
     }
     const Mat2 minus_b = -b;
     const double det_b = minus_b.determinant();
@@ -128,10 +168,13 @@ void FmfsLaplacian::update(const ParticleView& p) {
 Vec2 FmfsLaplacian::gradient_at(const ParticleView& p, const std::vector<double>& f,
                                 std::size_t i) const {
   Vec2 g = Vec2::Zero();
+  const double s2 = p.kernel.support() * p.kernel.support();
   for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
     const std::size_t j = p.neighbours.index[k];
-    const Vec2 xij = p.x[i] - p.x[j];
-    g.noalias() += ((f[j] - f[i]) * p.volume[j]) * p.kernel.gradient(xij, xij.norm());
+    Vec2 xij;
+    double r, dw;
+    if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;  // outside the support
+    g.noalias() += ((f[j] - f[i]) * p.volume[j]) * ((dw / r) * xij);
   }
   return corr_[i] * g;
 }
@@ -150,13 +193,15 @@ double FmfsLaplacian::laplacian_at(const ParticleView& p, const std::vector<doub
                                    std::size_t i) const {
   const Vec2 g = gradient_at(p, f, i);
   Mat2 t = Mat2::Zero();
+  const double s2 = p.kernel.support() * p.kernel.support();
   for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
     const std::size_t j = p.neighbours.index[k];
-    const Vec2 xij = p.x[i] - p.x[j];
-    const double r = xij.norm();
+    Vec2 xij;
+    double r, dw;
+    if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;  // outside the support
     const Vec2 eij = xij / r;
     const double bracket = (f[i] - f[j]) / r - eij.dot(g);
-    t.noalias() += (2.0 * p.volume[j] * bracket) * (eij * p.kernel.gradient(xij, r).transpose());
+    t.noalias() += (2.0 * p.volume[j] * bracket) * (eij * ((dw / r) * xij).transpose());
   }
   return bhat_[i].cwiseProduct(t).sum();
 }

@@ -19,14 +19,6 @@ int omp_get_thread_num() { return 0; }
 
 namespace cutbench::sph {
 
-namespace {
-Stress3 embed(const Mat2& m) {
-  Stress3 r = Stress3::Zero();
-  r.topLeftCorner<2, 2>() = m;
-  return r;
-}
-}  // namespace
-
 SolidSph::SolidSph(std::vector<Vec2> x, double dx, SolidMaterial material, SolidOptions options,
                    double h_over_dx)
     : x_(std::move(x)), mat_(material), opt_(options), kernel_(h_over_dx * dx), dx_(dx) {
@@ -153,13 +145,14 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   const double dt_th = th_dt_acc_ / sub;
   th_dt_acc_ = 0.0;
   th_steps_ = 0;
-  const ParticleView view{x_, vol, nl_, kernel_};
+  fill_pair_geometry(ParticleView{x_, vol, nl_, kernel_}, heat_pair_r_, heat_pair_dwdr_);
+  const ParticleView view{x_, vol, nl_, kernel_, &heat_pair_r_, &heat_pair_dwdr_};
   surface_ = detect_free_surface(view, th_.surface);
   std::vector<char> use_fmfs, loss;
   heat_masks(nl_, surface_, t_fixed_, th_.brookshaw_band, use_fmfs, loss);
   const FmfsLaplacian* fm = nullptr;
   if (th_.scheme == HeatScheme::fmfs) {
-    fmfs_.update(view);
+    fmfs_.update(view, &use_fmfs);  // FMFS geometry only where FMFS is used
     fm = &fmfs_;
   }
   std::vector<double> rate, tool_rate;
@@ -252,104 +245,149 @@ void SolidSph::update_neighbours() {
   }
   if (!rebuild) return;
   nl_ = build_neighbours(x_, kernel_.support() + std::max(skin, 0.0));
-  // mirror_[k]: position of i in the row of j = index[k] (rows are sorted)
-  mirror_.resize(nl_.index.size());
-  for (std::size_t i = 0; i < x_.size(); ++i)
-    for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
-      const std::size_t j = nl_.index[k];
-      const auto first = nl_.index.begin() + static_cast<std::ptrdiff_t>(nl_.begin(j));
-      const auto last = nl_.index.begin() + static_cast<std::ptrdiff_t>(nl_.end(j));
-      mirror_[k] = static_cast<std::size_t>(std::lower_bound(first, last, static_cast<std::uint32_t>(i)) -
-                                            nl_.index.begin());
-    }
+  // half list: the tail j > i of every (sorted) row
+  const std::size_t n = x_.size();
+  half_offset_.assign(n + 1, 0);
+  half_index_.clear();
+  half_index_.reserve(nl_.index.size() / 2 + 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto first = nl_.index.begin() + static_cast<std::ptrdiff_t>(nl_.begin(i));
+    const auto last = nl_.index.begin() + static_cast<std::ptrdiff_t>(nl_.end(i));
+    half_index_.insert(half_index_.end(), std::upper_bound(first, last, static_cast<std::uint32_t>(i)), last);
+    half_offset_[i + 1] = half_index_.size();
+  }
+  pairs_.resize(half_index_.size());
   x_listed_ = x_;
   ++builds_;
 }
+
+namespace {
+// Per-thread accumulation buffers for the symmetric pair loops: one array of n per thread, zeroed.
+template <class T>
+void prepare_parts(std::vector<std::vector<T>>& parts, std::size_t threads, std::size_t n, const T& zero) {
+  if (parts.size() != threads) parts.resize(threads);
+  for (auto& p : parts) p.assign(n, zero);
+}
+int max_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+}  // namespace
 
 void SolidSph::accelerations() {
   update_neighbours();
   const std::size_t n = x_.size();
   const double K = mat_.bulk(), c0 = mat_.bulk_speed(), h = kernel_.h(), support = kernel_.support();
-  sig_r2_.resize(n);                 // sigma / rho^2
-  art_.assign(n, Mat2::Zero());      // artificial stress R_i
-  auto& sig_r2 = sig_r2_;
-  auto& art = art_;
+  const double support2 = support * support;
+  pdata_.resize(n);
+  const double eps_art = opt_.artificial_stress;
   for (std::size_t i = 0; i < n; ++i) {
     const double p = K * (rho_[i] / mat_.density - 1.0);
-    const Stress3 sig = S_[i] - p * Stress3::Identity();
-    sig_r2[i] = sig / (rho_[i] * rho_[i]);
-    if (opt_.artificial_stress > 0.0) {
-      // principal stresses of the in-plane part, closed form
-      const double sxx = sig(0, 0), syy = sig(1, 1), sxy = sig(0, 1);
+    const double inv_r2 = 1.0 / (rho_[i] * rho_[i]);
+    const double sxx = S_[i](0, 0) - p, syy = S_[i](1, 1) - p, sxy = S_[i](0, 1);
+    ParticleData& f = pdata_[i];
+    f.x = x_[i].x();
+    f.y = x_[i].y();
+    f.vx = v_[i].x();
+    f.vy = v_[i].y();
+    f.rho = rho_[i];
+    f.m = m_[i];
+    f.vol = m_[i] / rho_[i];
+    f.sxx = sxx * inv_r2;
+    f.sxy = sxy * inv_r2;
+    f.syy = syy * inv_r2;
+    f.axx = f.axy = f.ayy = 0.0;
+    if (eps_art > 0.0) {
+      // R = -eps/rho^2 sum_{s_k > 0} s_k e_k e_k^T over the in-plane principal stresses s1 >= s2.
+      // Both positive: R = -eps/rho^2 sigma. Only s1 > 0: R = -eps/rho^2 s1 P1 with the projector
+      // P1 = (sigma - s2 I) / (s1 - s2) (no angles needed).
       const double mean = 0.5 * (sxx + syy), rad = std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
       const double s1 = mean + rad, s2 = mean - rad;
-      if (s1 > 0.0) {
-        const double theta = 0.5 * std::atan2(2.0 * sxy, sxx - syy);  // direction of s1
-        const Vec2 e1(std::cos(theta), std::sin(theta)), e2(-e1.y(), e1.x());
-        const double k = -opt_.artificial_stress / (rho_[i] * rho_[i]);
-        art[i] = (k * s1) * (e1 * e1.transpose());
-        if (s2 > 0.0) art[i] += (k * s2) * (e2 * e2.transpose());
+      const double k = -eps_art * inv_r2;
+      if (s2 > 0.0) {
+        f.axx = k * sxx;
+        f.axy = k * sxy;
+        f.ayy = k * syy;
+      } else if (s1 > 0.0) {
+        const double c = k * s1 / (s1 - s2);
+        f.axx = c * (sxx - s2);
+        f.axy = c * sxy;
+        f.ayy = c * (syy - s2);
       }
     }
   }
-  pair_gw_.resize(nl_.index.size());
-  pair_w_.resize(nl_.index.size());
   // Each pair (i < j) is evaluated once: acc_i += m_j T_ij gradW_ij, acc_j -= m_i T_ij gradW_ij
   // (T_ij symmetric, gradW_ji = -gradW_ij). Threads accumulate into private buffers that are summed
   // in thread order: deterministic for a fixed thread count.
-  auto pair_force = [&](std::size_t i, std::size_t k, Vec2& acc_i, Vec2& acc_j) {
-    const std::size_t j = nl_.index[k];
-    const Vec2 xij = x_[i] - x_[j];
-    const double r = xij.norm();
-    if (r >= support) {  // listed through the Verlet skin, outside the kernel support: no contribution
-      pair_gw_[k] = pair_gw_[mirror_[k]] = Vec2::Zero();
-      pair_w_[k] = pair_w_[mirror_[k]] = 0.0;
-      return;
+  const bool visc = opt_.alpha_visc > 0.0 || opt_.beta_visc > 0.0;
+  const double inv_wdx = 1.0 / w_dx_;
+  const double eta2 = 0.01 * h * h, minus_alpha_c0 = -opt_.alpha_visc * c0, beta = opt_.beta_visc;
+  const ParticleData* const pd = pdata_.data();
+  const std::uint32_t* const hidx = half_index_.data();
+  const std::size_t* const hoff = half_offset_.data();
+  PairData* const pairs = pairs_.data();
+  const CubicSpline2D kernel = kernel_;
+  auto row = [=](std::size_t i, Vec2* acc) {
+    const ParticleData fi = pd[i];
+    double ax = 0.0, ay = 0.0;
+    for (std::size_t k = hoff[i]; k < hoff[i + 1]; ++k) {
+      const std::size_t j = hidx[k];
+      const ParticleData& fj = pd[j];
+      const double xx = fi.x - fj.x, xy = fi.y - fj.y;
+      const double r2 = xx * xx + xy * xy;
+      if (r2 >= support2) {  // listed through the Verlet skin, outside the kernel support
+        pairs[k] = PairData{0.0, 0.0, 0.0};
+        continue;
+      }
+      const double r = std::sqrt(r2);
+      double wij, dw;
+      kernel.value_dwdr(r, wij, dw);
+      const double dwr = dw / r;
+      const double gx = dwr * xx, gy = dwr * xy;
+      pairs[k] = PairData{gx, gy, wij};
+      double txx = fi.sxx + fj.sxx, txy = fi.sxy + fj.sxy, tyy = fi.syy + fj.syy;
+      const double vr = (fi.vx - fj.vx) * xx + (fi.vy - fj.vy) * xy;
+      if (visc) {  // Monaghan viscosity on approaching pairs (vr < 0), selected without a branch
+        const double mu = h * vr / (r2 + eta2);
+        const double rhobar = 0.5 * (fi.rho + fj.rho);
+        const double pi0 = (minus_alpha_c0 * mu + beta * mu * mu) / rhobar;
+        const double pi = vr < 0.0 ? pi0 : 0.0;
+        txx -= pi;
+        tyy -= pi;
+      }
+      if (eps_art > 0.0) {
+        const double f = wij * inv_wdx;
+        const double f2 = f * f;
+        const double f4 = f2 * f2;
+        txx += f4 * (fi.axx + fj.axx);
+        txy += f4 * (fi.axy + fj.axy);
+        tyy += f4 * (fi.ayy + fj.ayy);
+      }
+      const double tgx = txx * gx + txy * gy, tgy = txy * gx + tyy * gy;
+      ax += fj.m * tgx;
+      ay += fj.m * tgy;
+      acc[j].x() -= fi.m * tgx;
+      acc[j].y() -= fi.m * tgy;
     }
-    const Vec2 gw = kernel_.gradient(xij, r);
-    const double wij = kernel_.value(r);
-    pair_gw_[k] = gw;
-    pair_w_[k] = wij;
-    pair_gw_[mirror_[k]] = -gw;
-    pair_w_[mirror_[k]] = wij;
-    Mat2 t = sig_r2[i].topLeftCorner<2, 2>() + sig_r2[j].topLeftCorner<2, 2>();
-    const Vec2 vij = v_[i] - v_[j];
-    const double vr = vij.dot(xij);
-    if (vr < 0.0 && (opt_.alpha_visc > 0.0 || opt_.beta_visc > 0.0)) {
-      const double mu = h * vr / (r * r + 0.01 * h * h);
-      const double rhobar = 0.5 * (rho_[i] + rho_[j]);
-      const double pi = (-opt_.alpha_visc * c0 * mu + opt_.beta_visc * mu * mu) / rhobar;
-      t.diagonal().array() -= pi;
-    }
-    if (opt_.artificial_stress > 0.0) {
-      const double f = wij / w_dx_;
-      const double f2 = f * f;
-      t += (f2 * f2) * (art[i] + art[j]);
-    }
-    const Vec2 tg = t * gw;
-    acc_i.noalias() += m_[j] * tg;
-    acc_j.noalias() -= m_[i] * tg;
+    acc[i].x() += ax;
+    acc[i].y() += ay;
   };
   acc_.assign(n, Vec2::Zero());
   auto& acc = acc_;
   if (n < detail::kOmpMinParticles) {
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k)
-        if (nl_.index[k] > i) pair_force(i, k, acc[i], acc[nl_.index[k]]);
+    for (std::size_t i = 0; i < n; ++i) row(i, acc.data());
   } else {
-    std::vector<std::vector<Vec2>> partial;
+    prepare_parts(acc_part_, static_cast<std::size_t>(max_threads()), n, Vec2(Vec2::Zero()));
 #pragma omp parallel
     {
-#pragma omp single
-      partial.assign(static_cast<std::size_t>(omp_get_num_threads()), std::vector<Vec2>());
-      auto& mine = partial[static_cast<std::size_t>(omp_get_thread_num())];
-      mine.assign(n, Vec2::Zero());
+      auto& mine = acc_part_[static_cast<std::size_t>(omp_get_thread_num())];
 #pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k)
-          if (nl_.index[k] > i) pair_force(i, k, mine[i], mine[nl_.index[k]]);
+      for (std::size_t i = 0; i < n; ++i) row(i, mine.data());
     }
-    for (const auto& part : partial)
+    for (const auto& part : acc_part_)
       for (std::size_t i = 0; i < n; ++i) acc[i] += part[i];
   }
   for (std::size_t i = 0; i < n; ++i) a_[i] = fixed_[i] ? Vec2::Zero() : Vec2(acc[i] + opt_.body_force);
@@ -362,47 +400,138 @@ void SolidSph::step(double dt) {
   if (!have_accel_) accelerations();
   // kick
   for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
-  // rates on x^n with v^{n+1/2} (nl_ belongs to x^n)
+  // rates on x^n with v^{n+1/2} (the pair geometry of accelerations() belongs to x^n)
   const double G = mat_.shear();
-  xsph_.assign(n, Vec2::Zero());
   rho_new_.resize(n);
   s_new_.resize(n);
   plastic_dT_.assign(n, 0.0);
+  // velocities after the kick into the packed particle data (positions, densities and volumes are
+  // those of x^n, filled by accelerations())
+  for (std::size_t i = 0; i < n; ++i) {
+    pdata_[i].vx = v_[i].x();
+    pdata_[i].vy = v_[i].y();
+  }
   auto& xsph = xsph_;
   auto& rho_new = rho_new_;
   auto& s_new = s_new_;
   auto& plastic_dT = plastic_dT_;
   const double chi_rc =
       thermal_ ? th_.taylor_quinney / (th_.heat.density * th_.heat.specific_heat) : 0.0;
+  const bool corr = opt_.correct_velocity_gradient, use_xsph = opt_.xsph > 0.0;
+  // Pair pass over the half list (symmetric): with dv = v_j - v_i and gradW_ji = -gradW_ij,
+  //   (grad v)_i += V_j dv (x) gradW_ij,  (grad v)_j += V_i dv (x) gradW_ij,
+  //   L_i -= V_j x_ij (x) gradW_ij,       L_j -= V_i x_ij (x) gradW_ij,
+  //   xs_i += m_j / rhobar W dv,           xs_j -= m_i / rhobar W dv.
+  const ParticleData* const pd = pdata_.data();
+  const std::uint32_t* const hidx = half_index_.data();
+  const std::size_t* const hoff = half_offset_.data();
+  const PairData* const pairs = pairs_.data();
+  auto row = [=](std::size_t i, RateAcc* ra, Mat2* lr) {
+    const ParticleData fi = pd[i];
+    RateAcc acc_i{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    Mat2 lr_i = Mat2::Zero();
+    for (std::size_t k = hoff[i]; k < hoff[i + 1]; ++k) {
+      const PairData pk = pairs[k];
+      if (pk.w == 0.0) continue;  // outside the support (Verlet skin): W = 0, grad W = 0
+      const std::size_t j = hidx[k];
+      const ParticleData& fj = pd[j];
+      const double dvx = fj.vx - fi.vx, dvy = fj.vy - fi.vy;
+      const double o00 = dvx * pk.gx, o01 = dvx * pk.gy, o10 = dvy * pk.gx, o11 = dvy * pk.gy;
+      acc_i.g00 += fj.vol * o00;
+      acc_i.g01 += fj.vol * o01;
+      acc_i.g10 += fj.vol * o10;
+      acc_i.g11 += fj.vol * o11;
+      RateAcc& aj = ra[j];
+      aj.g00 += fi.vol * o00;
+      aj.g01 += fi.vol * o01;
+      aj.g10 += fi.vol * o10;
+      aj.g11 += fi.vol * o11;
+      if (corr) {
+        const Mat2 ol = Vec2(fi.x - fj.x, fi.y - fj.y) * Vec2(pk.gx, pk.gy).transpose();
+        lr_i.noalias() -= fj.vol * ol;
+        lr[j].noalias() -= fi.vol * ol;
+      }
+      if (use_xsph) {
+        const double c = pk.w / (0.5 * (fi.rho + fj.rho));
+        const double wx = c * dvx, wy = c * dvy;
+        acc_i.sx += fj.m * wx;
+        acc_i.sy += fj.m * wy;
+        aj.sx -= fi.m * wx;
+        aj.sy -= fi.m * wy;
+      }
+    }
+    RateAcc& ai = ra[i];
+    ai.g00 += acc_i.g00;
+    ai.g01 += acc_i.g01;
+    ai.g10 += acc_i.g10;
+    ai.g11 += acc_i.g11;
+    ai.sx += acc_i.sx;
+    ai.sy += acc_i.sy;
+    if (corr) lr[i] += lr_i;
+  };
+  if (last_dep_.size() != n) last_dep_.assign(n, 0.0);
+  const RateAcc zero{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  racc_.assign(n, zero);
+  xsph_.resize(n);
+  if (corr) lren_.assign(n, Mat2::Zero());
+  if (n < detail::kOmpMinParticles) {
+    for (std::size_t i = 0; i < n; ++i) row(i, racc_.data(), lren_.data());
+  } else {
+    const auto nt = static_cast<std::size_t>(max_threads());
+    prepare_parts(racc_part_, nt, n, zero);
+    prepare_parts(lren_part_, nt, corr ? n : 0, Mat2(Mat2::Zero()));
+#pragma omp parallel
+    {
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) row(i, racc_part_[t].data(), lren_part_[t].data());
+    }
+    for (std::size_t t = 0; t < nt; ++t)
+      for (std::size_t i = 0; i < n; ++i) {
+        const RateAcc& p = racc_part_[t][i];
+        RateAcc& q = racc_[i];
+        q.g00 += p.g00;
+        q.g01 += p.g01;
+        q.g10 += p.g10;
+        q.g11 += p.g11;
+        q.sx += p.sx;
+        q.sy += p.sy;
+        if (corr) lren_[i] += lren_part_[t][i];
+      }
+  }
+  // Constitutive update per particle. Plane strain: S has components xx, yy, zz, xy (the
+  // out-of-plane shears stay zero); spin W = [[0, w], [-w, 0]] with w = (grad v)_[xy] antisymmetric part.
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
-    Mat2 gv = Mat2::Zero(), lren = Mat2::Zero();
-    Vec2 xs = Vec2::Zero();
-    for (std::size_t k = nl_.begin(i); k < nl_.end(i); ++k) {
-      if (pair_w_[k] == 0.0) continue;  // outside the support (Verlet skin): W = 0, grad W = 0
-      const std::size_t j = nl_.index[k];
-      const Vec2& gw = pair_gw_[k];
-      const double vj = m_[j] / rho_[j];
-      gv.noalias() += vj * (v_[j] - v_[i]) * gw.transpose();
-      if (opt_.correct_velocity_gradient) lren.noalias() -= vj * (x_[i] - x_[j]) * gw.transpose();
-      if (opt_.xsph > 0.0) xs += (m_[j] / (0.5 * (rho_[i] + rho_[j])) * pair_w_[k]) * (v_[j] - v_[i]);
-    }
-    if (opt_.correct_velocity_gradient && std::abs(lren.determinant()) > 1e-6) gv = gv * lren.inverse();
-    xsph[i] = opt_.xsph * xs;
-    const Mat2 d2 = 0.5 * (gv + gv.transpose());
-    const Mat2 w2 = 0.5 * (gv - gv.transpose());
-    const Stress3 d = embed(d2), w = embed(w2);
-    const double trd = d.trace();
+    const RateAcc& ra = racc_[i];
+    Mat2 gv;
+    gv << ra.g00, ra.g01, ra.g10, ra.g11;
+    if (corr && std::abs(lren_[i].determinant()) > 1e-6) gv = gv * lren_[i].inverse();
+    xsph[i] = opt_.xsph * Vec2(ra.sx, ra.sy);
+    const double dxx = gv(0, 0), dyy = gv(1, 1), dxy = 0.5 * (gv(0, 1) + gv(1, 0)), w = 0.5 * (gv(0, 1) - gv(1, 0));
+    const double trd = dxx + dyy;
     rho_new[i] = rho_[i] * (1.0 - dt * trd);
-    const Stress3 dev = d - trd / 3.0 * Stress3::Identity();
-    Stress3 s = S_[i] + dt * (2.0 * G * dev + w * S_[i] - S_[i] * w);
+    const double third = trd / 3.0;
+    const Stress3& S = S_[i];
+    const double sxx = S(0, 0), syy = S(1, 1), szz = S(2, 2), sxy = S(0, 1);
+    Stress3 s = Stress3::Zero();
+    s(0, 0) = sxx + dt * (2.0 * G * (dxx - third) + 2.0 * w * sxy);
+    s(1, 1) = syy + dt * (2.0 * G * (dyy - third) - 2.0 * w * sxy);
+    s(2, 2) = szz + dt * (2.0 * G * (-third));
+    s(0, 1) = s(1, 0) = sxy + dt * (2.0 * G * dxy + w * (syy - sxx));
     // Elastic without evaluating J-C: sigma_y >= A (1 - T*^m) >= A m (1 - T*) for m <= 1 (T*^m is
     // concave, below its tangent at 1) or A (1 - T*) for m > 1; the rate factor is >= 1.
-    if (mat_.plastic && von_mises(s) > yield_floor(T_[i])) {
-      const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i]);
-      s = rr.deviator;
-      eps_p_[i] += rr.delta_eps_p;
-      plastic_dT[i] = chi_rc * rr.flow_stress * rr.delta_eps_p;
+    if (mat_.plastic) {
+      const double q = std::sqrt(1.5 * (s(0, 0) * s(0, 0) + s(1, 1) * s(1, 1) + s(2, 2) * s(2, 2) +
+                                        2.0 * s(0, 1) * s(0, 1)));
+      if (q > yield_floor(T_[i])) {
+        // warm start from the particle's increment of its last plastic step
+        const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i], last_dep_[i]);
+        s = rr.deviator;
+        eps_p_[i] += rr.delta_eps_p;
+        last_dep_[i] = rr.delta_eps_p;
+        plastic_dT[i] = chi_rc * rr.flow_stress * rr.delta_eps_p;
+      }
     }
     s_new[i] = s;
   }
@@ -470,10 +599,21 @@ void SolidSph::penalty_contact(double dt) {
   const double offset = contact_.offset_fraction * dx_;
   if (friction_history_.size() != x_.size()) friction_history_.assign(x_.size(), Vec2::Zero());
   Vec2 force = Vec2::Zero();
+  if (contact_gap_.size() != x_.size()) {
+    contact_gap_.assign(x_.size(), 0.0);
+    contact_p_.assign(x_.size(), Vec2::Zero());
+  }
   for (std::size_t i = 0; i < x_.size(); ++i) {
     if (fixed_[i]) continue;
-    const SignedDistance sd = tool_->at(x_[i] - tool_pos);
+    const Vec2 p = x_[i] - tool_pos;
+    // screening: the signed distance is 1-Lipschitz, so g(p) >= gap_last - |p - p_last| > 0
+    // (friction history already zero from that evaluation); margin against round-off
+    const double gl = contact_gap_[i];
+    if (gl > 0.0 && (p - contact_p_[i]).squaredNorm() < 0.81 * gl * gl) continue;
+    const SignedDistance sd = tool_->at(p);
     const double g = sd.distance - offset;
+    contact_p_[i] = p;
+    contact_gap_[i] = g;
     if (g >= 0.0) {
       friction_history_[i] = Vec2::Zero();
       continue;

@@ -22,6 +22,7 @@ SurfaceDetection detect_free_surface(const ParticleView& p, const SurfaceOptions
   out.normal.assign(n, Vec2::Zero());
   const double h = p.kernel.h();
   const double sqrt2h = std::sqrt(2.0) * h;
+  const double s2 = p.kernel.support() * p.kernel.support();
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     const double lam = smallest_eigenvalue(l[i]);
@@ -30,8 +31,11 @@ SurfaceDetection detect_free_surface(const ParticleView& p, const SurfaceOptions
     Vec2 s = Vec2::Zero();
     for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
       const std::size_t j = p.neighbours.index[k];
-      const Vec2 xij = p.x[i] - p.x[j];
-      s.noalias() += p.kernel.gradient(xij, xij.norm()) * p.volume[j];
+      Vec2 xij;
+      double r, dw;
+      // outside the support (lists may carry a skin)
+      if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;
+      s.noalias() += ((dw / r) * xij) * p.volume[j];
     }
     Vec2 nu = -s;
     if (std::abs(l[i].determinant()) > 1e-12) nu = -(l[i].inverse() * s);

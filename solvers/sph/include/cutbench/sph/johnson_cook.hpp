@@ -37,8 +37,10 @@ struct ReturnResult {
 // start of the step, step dt and temperature T, find d >= 0 with
 //   q_trial - 3 G d = sigma_y(eps_p + d, d / dt, T),   q = sqrt(3/2 s:s),
 // by safeguarded Newton (bisection fallback), and scale the deviator by (1 - 3 G d / q_trial).
+// `guess` (optional, > 0): first Newton iterate, e.g. the particle's increment of the previous
+// step (clipped to the bracket); the root and the tolerance are the same, only the path differs.
 ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial_deviator, double G, double eps_p,
-                           double dt, double T);
+                           double dt, double T, double guess = 0.0);
 
 double von_mises(const Stress3& deviator);
 

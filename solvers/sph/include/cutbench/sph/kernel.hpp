@@ -37,6 +37,20 @@ public:
     }
     return 0.0;
   }
+  // W and dW/dr together (one branch; same values as value() and dwdr()).
+  void value_dwdr(double r, double& w, double& dw) const {
+    const double q = r * inv_h_;
+    if (q < 1.0) {
+      w = sigma_ * (1.0 - 1.5 * q * q + 0.75 * q * q * q);
+      dw = sigma_inv_h_ * (-3.0 * q + 2.25 * q * q);
+    } else if (q < 2.0) {
+      const double t = 2.0 - q;
+      w = sigma_ * 0.25 * t * t * t;
+      dw = -sigma_inv_h_ * 0.75 * t * t;
+    } else {
+      w = dw = 0.0;
+    }
+  }
   // grad_i W_ij for x_ij = x_i - x_j at distance r = |x_ij| > 0.
   Vec2 gradient(const Vec2& xij, double r) const { return (dwdr(r) / r) * xij; }
 

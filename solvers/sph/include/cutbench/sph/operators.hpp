@@ -5,6 +5,7 @@
 //
 // Conventions: x_ij = x_i - x_j, r_ij = |x_ij|, e_ij = x_ij / r_ij, grad W_ij = dW/dr e_ij (the
 // gradient with respect to x_i), V_j = m_j / rho_j, sums over neighbours j != i.
+#include <cmath>
 #include <vector>
 
 #include "cutbench/sph/kernel.hpp"
@@ -18,7 +19,33 @@ struct ParticleView {
   const std::vector<double>& volume;
   const NeighbourList& neighbours;
   const CubicSpline2D& kernel;
+  // Optional pair geometry cache (per listed pair k: r = |x_ij| and dW/dr(r), r < 0 for pairs
+  // outside the support), filled by fill_pair_geometry() for this configuration. The operators
+  // then skip the square root and kernel evaluation and give the same values bit for bit.
+  const std::vector<double>* pair_r = nullptr;
+  const std::vector<double>* pair_dwdr = nullptr;
 };
+
+// Fill the pair geometry cache of ParticleView for the positions and list of `p`.
+void fill_pair_geometry(const ParticleView& p, std::vector<double>& r, std::vector<double>& dwdr);
+
+namespace detail {
+// Pair k (i, j) of the view's list: x_ij, r and dW/dr; false outside the kernel support.
+inline bool pair_geometry(const ParticleView& p, std::size_t i, std::size_t j, std::size_t k, double s2, Vec2& xij,
+                          double& r, double& dw) {
+  xij = p.x[i] - p.x[j];
+  if (p.pair_r) {
+    r = (*p.pair_r)[k];
+    dw = (*p.pair_dwdr)[k];
+    return r >= 0.0;
+  }
+  const double r2 = xij.squaredNorm();
+  if (r2 >= s2) return false;
+  r = std::sqrt(r2);
+  dw = p.kernel.dwdr(r);
+  return true;
+}
+}  // namespace detail
 
 // L_i = sum_j (x_j - x_i) (x) grad W_ij V_j  (= I for a full kernel support). Symmetric for a
 // radial kernel.
@@ -39,7 +66,9 @@ public:
   // Relative singularity thresholds on det(b) and det of the 3x3 system (both O(1) in the interior).
   explicit FmfsLaplacian(double det_tolerance = 1e-8) : det_tol_(det_tolerance) {}
 
-  void update(const ParticleView& p);
+  // `needed` (optional): particles with needed[i] == 0 are skipped and left irregular (for callers
+  // that use Brookshaw there anyway).
+  void update(const ParticleView& p, const std::vector<char>* needed = nullptr);
 
   std::size_t size() const { return regular_.size(); }
   bool regular(std::size_t i) const { return regular_[i] != 0; }

@@ -15,6 +15,7 @@
 // from v^{n+1/2} on x^n; x^{n+1} = x^n + dt (v^{n+1/2} + XSPH); a^{n+1}; v^{n+1} = v^{n+1/2} + dt/2 a^{n+1}.
 // dt = cfl h / (c + max |v|), c = sqrt((K + 4G/3) / rho0).
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "cutbench/sph/heat.hpp"
@@ -136,16 +137,43 @@ private:
   double dx_, w_dx_;
   NeighbourList nl_;
   std::vector<Vec2> x_listed_;  // positions at the last neighbour build
-  // Per-pair kernel gradient and value at the current positions (filled by accelerations(),
-  // reused by the rate loop of the next step: same positions).
-  std::vector<Vec2> pair_gw_;
-  std::vector<double> pair_w_;
-  std::vector<std::size_t> mirror_;  // index of the reverse pair (j, i) for every listed pair (i, j)
-  // per-step work buffers (kept to avoid allocation in the time loop)
-  std::vector<Stress3> sig_r2_, s_new_;
-  std::vector<Mat2> art_;
+  // Half list: the pairs (i, j > i) of nl_ (rows of nl_ are sorted, so these are the row tails),
+  // compressed. Both mechanical passes run over it once per pair with symmetric updates.
+  std::vector<std::size_t> half_offset_;
+  std::vector<std::uint32_t> half_index_;
+  // Per half pair: grad_i W_ij and W_ij at the current positions (filled by accelerations(),
+  // reused by the rate pass of the next step: same positions); W = 0 marks a pair outside the
+  // support (listed through the Verlet skin).
+  struct PairData {
+    double gx, gy, w;
+  };
+  std::vector<PairData> pairs_;
+  // per-particle data of the pair loops, packed for locality: position, velocity, density, mass,
+  // volume, sigma/rho^2 and artificial stress R, in-plane (xx, xy, yy)
+  struct ParticleData {
+    double x, y, vx, vy, rho, m, vol, sxx, sxy, syy, axx, axy, ayy;
+  };
+  std::vector<ParticleData> pdata_;
+  // per-step work buffers (kept to avoid allocation in the time loop); per-thread accumulators
+  // for the symmetric pair passes (summed in thread order)
+  struct RateAcc {
+    double g00, g01, g10, g11, sx, sy;  // velocity gradient and XSPH sums
+  };
+  std::vector<Stress3> s_new_;
   std::vector<Vec2> acc_, xsph_;
+  std::vector<RateAcc> racc_;
+  std::vector<Mat2> lren_;
   std::vector<double> rho_new_, plastic_dT_;
+  std::vector<double> last_dep_;  // plastic strain increment of each particle's last plastic step
+  std::vector<std::vector<Vec2>> acc_part_;
+  std::vector<std::vector<RateAcc>> racc_part_;
+  std::vector<std::vector<Mat2>> lren_part_;
+  // contact screening: relative position (particle - tool) and gap at the last evaluation of the
+  // tool's signed distance; the distance is 1-Lipschitz, so while |p - p_last| < gap_last the
+  // particle cannot touch the tool and the evaluation is skipped (exact)
+  std::vector<double> heat_pair_r_, heat_pair_dwdr_;  // pair geometry cache of the conduction update
+  std::vector<Vec2> contact_p_;
+  std::vector<double> contact_gap_;
   std::size_t builds_ = 0;
   double time_ = 0.0;
   std::size_t steps_ = 0;

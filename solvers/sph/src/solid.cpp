@@ -460,13 +460,7 @@ void SolidSph::step(double dt) {
         aj.sy -= fi.m * wy;
       }
     }
-    RateAcc& ai = ra[i];
-    ai.g00 += acc_i.g00;
-    ai.g01 += acc_i.g01;
-    ai.g10 += acc_i.g10;
-    ai.g11 += acc_i.g11;
-    ai.sx += acc_i.sx;
-    ai.sy += acc_i.sy;
+    ra[i] += acc_i;
     if (corr) lr[i] += lr_i;
   };
   if (last_dep_.size() != n) last_dep_.assign(n, 0.0);
@@ -488,14 +482,7 @@ void SolidSph::step(double dt) {
     }
     for (std::size_t t = 0; t < nt; ++t)
       for (std::size_t i = 0; i < n; ++i) {
-        const RateAcc& p = racc_part_[t][i];
-        RateAcc& q = racc_[i];
-        q.g00 += p.g00;
-        q.g01 += p.g01;
-        q.g10 += p.g10;
-        q.g11 += p.g11;
-        q.sx += p.sx;
-        q.sy += p.sy;
+        racc_[i] += racc_part_[t][i];
         if (corr) lren_[i] += lren_part_[t][i];
       }
   }

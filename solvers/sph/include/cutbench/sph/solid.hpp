@@ -158,6 +158,15 @@ private:
   // for the symmetric pair passes (summed in thread order)
   struct RateAcc {
     double g00, g01, g10, g11, sx, sy;  // velocity gradient and XSPH sums
+    RateAcc& operator+=(const RateAcc& o) {
+      g00 += o.g00;
+      g01 += o.g01;
+      g10 += o.g10;
+      g11 += o.g11;
+      sx += o.sx;
+      sy += o.sy;
+      return *this;
+    }
   };
   std::vector<Stress3> s_new_;
   std::vector<Vec2> acc_, xsph_;

@@ -10,6 +10,8 @@
 #include "cutbench/limit/limit_analysis.hpp"
 #include "cutbench/limit/mesh.hpp"
 
+#include "chip_fixture.hpp"
+
 using namespace cutbench::limit;
 using Eigen::Vector2d;
 
@@ -211,12 +213,7 @@ BOOST_AUTO_TEST_CASE(frictional_chip_iso_vs_aniso) {
   //   isotropic   156: 2.2396, 179: 2.2228, 215: 2.2211, 255: 2.2179 (+1.07%)
   //   anisotropic 152: 2.2230, 171: 2.2147, 196: 2.2060, 242: 2.1944 (−0.005%)
   // (uniform n = 8: 2.2000 (+0.25%), n = 12: 2.1927 (−0.08%)).
-  CuttingSetup c;
-  c.alpha = 6.0 * M_PI / 180;
-  c.mu = 0.2;
-  c.phi = merchant_shear_angle(c.alpha, c.mu);
-  c.contact_length = 1.5;
-  c.n = 4;
+  CuttingSetup c = test::sliding_chip_at_merchant();
   const double fm = merchant_force_bar(c.phi, c.alpha, c.mu);
   double final_err[2] = {0.0, 0.0};
   for (int aniso = 0; aniso < 2; ++aniso) {

@@ -6,6 +6,8 @@
 #include "cutbench/common/errors.hpp"
 #include "cutbench/limit/cutting.hpp"
 
+#include "chip_fixture.hpp"
+
 using namespace cutbench::limit;
 
 BOOST_AUTO_TEST_SUITE(limit_cutting)
@@ -144,12 +146,7 @@ BOOST_AUTO_TEST_CASE(frictional_chip_adaptive) {
   // streamline). α = 6°, μ = 0.2, φ_M, l = 1.5 t1 from n = 4 (144 elements): 2.2349, 2.2396,
   // 2.2228, 2.2211 (215 el.), then 2.2179, 2.2485, 2.2198 (398 el.): isotropic bisection converges
   // slowly and not monotonically toward Merchant (2.1945); uniform n = 8 gives 2.2000.
-  CuttingSetup c;
-  c.alpha = 6.0 * M_PI / 180;
-  c.mu = 0.2;
-  c.phi = merchant_shear_angle(c.alpha, c.mu);
-  c.contact_length = 1.5;
-  c.n = 4;
+  CuttingSetup c = test::sliding_chip_at_merchant();
   std::vector<CuttingAdaptStep> hist;
   const auto r = adapt_cutting(c, 3, 0.5, &hist);
   for (const auto& h : hist) BOOST_TEST_MESSAGE("adaptive frictional chip: elements " << h.elements << " Fc_bar " << h.fc_bar);

@@ -52,12 +52,7 @@ ExplicitEFG::ExplicitEFG(const Discretisation& d, const Orthotropic& mat, double
   }
   compute_internal_forces();
   for (std::size_t I = 0; I < n; ++I) a_[I] = (fext_[I] - fint_[I]) / mass_[I];
-  {
-    CellList cl;
-    cl.build(X0_, spacing_);
-    dmin0_ = cl.min_pair_distance();
-    if (!std::isfinite(dmin0_)) dmin0_ = spacing_;
-  }
+  dmin0_ = min_active_distance();
   if (opt_.collapse_ratio < 0.0 || opt_.collapse_ratio >= 1.0) {
     throw InputError("collapse_ratio", "must be in [0, 1) (0: off)");
   }
@@ -362,7 +357,9 @@ void ExplicitEFG::apply_bcs(double t) {
   for (const auto& b : bcs_) v_[b.node](b.dof) = b.v(t);
 }
 
-double ExplicitEFG::critical_time_step() const {
+double ExplicitEFG::critical_time_step() const { return min_active_distance() / mat_.wave_speed(); }
+
+double ExplicitEFG::min_active_distance() const {
   CellList cl;
   const std::vector<Vec2>* pts = &x_;
   if (nreleased_ > 0) {
@@ -373,9 +370,8 @@ double ExplicitEFG::critical_time_step() const {
     pts = &xactive_;
   }
   cl.build(*pts, spacing_);
-  double dmin = cl.min_pair_distance();
-  if (!std::isfinite(dmin)) dmin = spacing_;
-  return dmin / mat_.wave_speed();
+  const double dmin = cl.min_pair_distance();
+  return std::isfinite(dmin) ? dmin : spacing_;
 }
 
 bool ExplicitEFG::erode_collapsed() {

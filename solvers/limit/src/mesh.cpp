@@ -182,23 +182,42 @@ Mesh merge(const Mesh& a, const Mesh& b, double tol) {
   return m;
 }
 
-Mesh refine(const Mesh& mesh, const std::vector<int>& marked) {
-  // vertices only (renumbered), as a linear triangulation
-  std::vector<int> vid(mesh.nodes.size(), -1);
+namespace {
+
+// vertex triangles of a T6 mesh, renumbered: vertex id → original node id in `orig`
+struct VertexMesh {
   std::vector<Vector2d> verts;
+  std::vector<int> orig;               // vertex → node of the T6 mesh
+  std::vector<int> vid;                // node of the T6 mesh → vertex (−1 for mid-side nodes)
   std::vector<std::array<int, 3>> tris;
+};
+
+VertexMesh vertex_mesh(const Mesh& mesh) {
+  VertexMesh v;
+  v.vid.assign(mesh.nodes.size(), -1);
   for (const auto& el : mesh.elements) {
     std::array<int, 3> t{};
     for (std::size_t k = 0; k < 3; ++k) {
-      int& v = vid[static_cast<std::size_t>(el[k])];
-      if (v < 0) {
-        v = static_cast<int>(verts.size());
-        verts.push_back(mesh.nodes[static_cast<std::size_t>(el[k])]);
+      int& id = v.vid[static_cast<std::size_t>(el[k])];
+      if (id < 0) {
+        id = static_cast<int>(v.verts.size());
+        v.verts.push_back(mesh.nodes[static_cast<std::size_t>(el[k])]);
+        v.orig.push_back(el[k]);
       }
-      t[k] = v;
+      t[k] = id;
     }
-    tris.push_back(t);
+    v.tris.push_back(t);
   }
+  return v;
+}
+
+}  // namespace
+
+Mesh refine(const Mesh& mesh, const std::vector<int>& marked) {
+  // vertices only (renumbered), as a linear triangulation
+  VertexMesh vm = vertex_mesh(mesh);
+  std::vector<Vector2d>& verts = vm.verts;
+  const std::vector<std::array<int, 3>>& tris = vm.tris;
   using Edge = std::pair<int, int>;
   auto key = [](int a, int b) { return Edge(std::min(a, b), std::max(a, b)); };
   auto longest = [&](const std::array<int, 3>& t) {  // local index k of the longest edge (t[k], t[k+1])
@@ -273,33 +292,6 @@ Mesh refine(const Mesh& mesh, const std::vector<int>& marked) {
 namespace {
 
 constexpr double kPiMesh = 3.14159265358979323846;
-
-// vertex triangles of a T6 mesh, renumbered: vertex id → original node id in `orig`
-struct VertexMesh {
-  std::vector<Vector2d> verts;
-  std::vector<int> orig;               // vertex → node of the T6 mesh
-  std::vector<int> vid;                // node of the T6 mesh → vertex (−1 for mid-side nodes)
-  std::vector<std::array<int, 3>> tris;
-};
-
-VertexMesh vertex_mesh(const Mesh& mesh) {
-  VertexMesh v;
-  v.vid.assign(mesh.nodes.size(), -1);
-  for (const auto& el : mesh.elements) {
-    std::array<int, 3> t{};
-    for (std::size_t k = 0; k < 3; ++k) {
-      int& id = v.vid[static_cast<std::size_t>(el[k])];
-      if (id < 0) {
-        id = static_cast<int>(v.verts.size());
-        v.verts.push_back(mesh.nodes[static_cast<std::size_t>(el[k])]);
-        v.orig.push_back(el[k]);
-      }
-      t[k] = id;
-    }
-    v.tris.push_back(t);
-  }
-  return v;
-}
 
 // gradients of the three linear shape functions of triangle (a, b, c) (rows) and its area
 Eigen::Matrix<double, 3, 2> p1_gradients(const Vector2d& a, const Vector2d& b, const Vector2d& c, double* area) {

@@ -213,6 +213,7 @@ private:
   };
   void update_release();
   bool erode_collapsed();           // collapse erosion; true when something was eroded
+  double min_active_distance() const;  // smallest distance between active nodes (Eq 56)
   bool update_damage(GP& q) const;  // true when a new mode failed
   void apply_contact(double dt, std::vector<Vec2>& vhalf);
   void compute_internal_forces();

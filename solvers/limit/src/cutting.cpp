@@ -190,6 +190,7 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     const Vector2d S(-c.t1 / std::tan(c.phi), c.t1);
     const Vector2d ns(std::sin(c.phi), std::cos(c.phi));
     const double tol = 1e-6 * c.t1;
+    Vector2d v_end(0.0, 0.0);  // ∫ v ds over the chip end (Simpson)
     for (const auto& e : boundary_edges(mesh)) {
       const Vector2d n = boundary_normal(mesh, e);
       const Vector2d& xm = mesh.nodes[static_cast<std::size_t>(e.m)];
@@ -198,9 +199,14 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
       const double f = L * (vn(e.a) + 4.0 * vn(e.m) + vn(e.b)) / 6.0;
       if (std::abs(xm.y() - c.t1) < tol && xm.x() < S.x()) res.flux_top += f;
       else if (std::abs(xm.dot(nr) - S.dot(nr)) < tol) res.flux_back += f;
-      else if (std::abs(n.dot(ns) - 1.0) < 1e-9 && xm.dot(r) > c.contact_length) res.flux_end += f;  // end ∥ OS
+      else if (std::abs(n.dot(ns) - 1.0) < 1e-9 && xm.dot(r) > c.contact_length) {  // end ∥ OS
+        res.flux_end += f;
+        auto v = [&](int nd) { return Vector2d(sol.velocity[2 * nd], sol.velocity[2 * nd + 1]); };
+        v_end += L * (v(e.a) + 4.0 * v(e.m) + v(e.b)) / 6.0;
+      }
       else if (std::abs(xm.dot(nr)) < tol && xm.dot(r) > 0.0) res.flux_rake_free += f;  // separation or free part
     }
+    res.chip_exit_angle = std::atan2(-v_end.dot(nr), v_end.dot(r));
     double rn = 0.0;
     for (Eigen::Index i = 0; i < sol.slider_rn.size(); ++i) rn += std::abs(sol.slider_rn[i]);
     res.streamline_force = rn / (c.k * c.t1);

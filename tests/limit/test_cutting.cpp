@@ -229,4 +229,29 @@ BOOST_AUTO_TEST_CASE(chip_exit_angle_sign_with_friction) {
   BOOST_TEST(lo.flux_rake_free > 0.0);  // would cross the rake face beyond l
 }
 
+BOOST_AUTO_TEST_CASE(turned_free_chip_mass_balance) {
+  // η2 ≠ 0 (paper Fig. 5): the chip beyond l is a second parallelogram turned about the line C–D;
+  // the outward fluxes through the top,
+  // the chip back (straight + turned), the chip end and the rake line beyond l add up to the
+  // inflow t1 (incompressibility), which checks the classification of the turned surfaces.
+  for (double eta2 : {-0.3, 0.2}) {
+    CuttingSetup c;
+    c.n = 4;
+    c.contact_length = 1.0;
+    c.mu = 0.5;
+    c.alpha = 6.0 * M_PI / 180;
+    c.phi = merchant_shear_angle(c.alpha, c.mu);
+    c.eta2 = eta2;
+    const auto r = solve_cutting(c);
+    const double total = r.flux_top + r.flux_back + r.flux_end + r.flux_rake_free;
+    BOOST_TEST_MESSAGE("eta2=" << eta2 << " fluxes top " << r.flux_top << " back " << r.flux_back << " end " << r.flux_end
+                                << " rake " << r.flux_rake_free << " sum " << total << " exit angle " << r.chip_exit_angle);
+    BOOST_TEST(std::abs(total - 1.0) < 1e-6);
+    BOOST_TEST(r.flux_end > 0.5);
+  }
+  CuttingSetup bad;
+  bad.eta2 = 1.0;
+  BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -225,6 +225,8 @@ SolverSpec cutting_spec() {
               p_int("contact_search", "unrestricted tool: 1 = grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact; 2 = natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)", 0, 0, 2),
               p_int("steady_state", "steady-state loop of Fig. 4 around the solve (or the search): 1 = phi <- min(phi*, phi_M) with phi* the free-surface turning point; 2 = phi* where the chip leaves the contact along the rake face (stream angle eta2 = 0, velocity tangent to the chip contour): start at phi_M, keep it when eta2 <= 1e-3 rad, else step down by 2 deg and bisect to 0.5 deg", 0, 0, 2),
               p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3),
+              param("eta2", Dim::angle, "stream angle of the chip beyond the contact (Fig. 5): the free chip turned by eta2 away from the tool (< 0: toward the tool side, restricted tool only)", 0.0, -0.7, 0.7),
+              p_int("fit_eta2", "1: fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", 0, 0, 1),
               p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%); fixed geometry only", 0, 0, 10),
               p_int("refine", "kind of the adaptive refinement: 0 isotropic (longest-edge bisection), 1 anisotropic (recovered Hessian of the dissipation density -> metric-directed bisection + edge swaps, stretched along the shear bands)", 0, 0, 1)};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
@@ -245,7 +247,8 @@ SolverSpec cutting_spec() {
                {"flux_end", Dim::dimensionless, "volume flux out of the chip end / (v t1)"},
                {"flux_rake_free", Dim::dimensionless, "volume flux out of the rake-face line / (v t1): free part beyond l (> 0: into the tool, < 0: lifting off) and separating contact nodes (< 0)"},
                {"streamline_force", Dim::dimensionless, "sum |normal reaction| on the streamline surfaces / (k t1 w)"},
-               {"eta2", Dim::angle, "direction of the chip after the contact relative to the rake face (mean velocity over the chip end; > 0 away from the tool)"},
+               {"eta2", Dim::angle, "direction of the chip end velocity relative to the chip beyond the contact (mean velocity over the chip end; > 0 away from the tool)"},
+               {"eta2_geometry", Dim::angle, "stream angle eta2 of the chip geometry beyond the contact (given or fitted)"},
                {"max_sigma_eq_over_k", Dim::dimensionless, "max sqrt(J2)/k over all stress points"},
                {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},
                {"solves", Dim::dimensionless, "limit-analysis problems solved (Coulomb steps excluded)"},
@@ -268,9 +271,13 @@ SolverSpec cutting_spec() {
     c.coulomb_fixed_point = as_int(v, "coulomb_fixed_point") == 1;
     c.streamline = as_int(v, "streamline");
     c.stick_tol = v.at("stick_tol");
+    c.eta2 = v.at("eta2");
+    const bool fit_eta = as_int(v, "fit_eta2") == 1;
     const int search_mode = as_int(v, "contact_search");
     const int loop_mode = as_int(v, "steady_state");
     const bool search = search_mode > 0, loop = loop_mode == 1, tangent = loop_mode == 2;
+    if (fit_eta && (search || loop || tangent))
+      throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = 0, steady_state = 0)");
     if (as_int(v, "adapt_steps") > 0 && (search || loop))
       throw InputError("adapt_steps", "adaptive refinement is only available with contact_search = 0 and steady_state = 0 or 2");
     if (progress) progress(0.0, "solving");
@@ -304,6 +311,7 @@ SolverSpec cutting_spec() {
       return std::move(res.final);
     };
     CuttingResult r;
+    std::vector<std::string> out_notes_pending;
     std::vector<double> loop_eta;
     bool tangent_converged = true, tangent_at_merchant = false;
     if (tangent) {  // Fig. 4 with phi* from the chip direction after the contact (eta2 = 0)
@@ -338,6 +346,13 @@ SolverSpec cutting_spec() {
         c.phi = next;
         if (search) c.contact_length = t1 / std::cos(a) / t1;
       }
+    } else if (fit_eta) {
+      auto fit = fit_eta2(c, solve_once);
+      loop_eta = fit.eta2;
+      loop_phi = fit.exit_angle;  // reused below as the fit history
+      c.eta2 = fit.eta2.back();
+      if (!fit.converged) out_notes_pending.push_back("eta2 fit not converged after 6 solves (last exit angle " + std::to_string(fit.exit_angle.back()) + " rad)");
+      r = std::move(fit.final);
     } else {
       r = solve_once(c);
     }
@@ -369,6 +384,15 @@ SolverSpec cutting_spec() {
     put("flux_rake_free", r.flux_rake_free, "1");
     put("streamline_force", r.streamline_force, "1");
     put("eta2", r.chip_exit_angle, "rad");
+    put("eta2_geometry", c.eta2, "rad");
+    for (auto& nt : out_notes_pending) out.notes.push_back(nt);
+    if (fit_eta) {
+      Table hist;
+      hist.name = "eta2_fit";
+      hist.add("eta2", "rad", loop_eta);
+      hist.add("exit_angle", "rad", loop_phi);
+      out.tables.push_back(std::move(hist));
+    }
     put("solves", solves, "1");
     put("elements", r.model.mesh.num_elements(), "1");
     {

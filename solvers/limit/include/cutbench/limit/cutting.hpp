@@ -8,6 +8,8 @@
 // bounded by the shear plane OS (S = (−t1 cot φ, t1)), the rake face, and its back surface at
 // distance t2 = t1 cos(φ − α)/sin φ (Eq. 2). The rake face is in permanent contact (w_n = 0)
 // with Coulomb friction μ over the contact length l from the tip; beyond l the chip is free.
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "cutbench/limit/limit_analysis.hpp"
@@ -41,6 +43,12 @@ struct CuttingSetup {
   // a contact node sticks when |w_t| < stick_tol · v_chip, v_chip = sin φ / cos(φ − α) the speed
   // of the rigid chip (the tip node is fixed, so w_t rises continuously from zero)
   double stick_tol = 1e-3;
+  // stream angle η2 of the paper's Fig. 5: the chip beyond the contact (s > l) is a parallelogram
+  // along r2 = cos η2 r − sin η2 n_r, i.e. turned by η2 away from the tool (> 0) or toward the
+  // tool side (< 0, admissible only for a restricted tool whose rake face ends at l). 0: straight
+  // chip (Eq. 2). The chip back beyond l is then not a streamline surface (streamline ≥ 2 holds
+  // the straight part only).
+  double eta2 = 0.0;
 };
 
 struct CuttingResult {
@@ -107,6 +115,32 @@ SteadyStateResult steady_state(CuttingSetup setup, const SteadyStateOptions& opt
 
 // Mean normal contact stress over the last `fraction` of the contact length (σ_n/k, < 0 in
 // compression), from the lumped profile of a solved case.
+// Fit of η2 (restricted tool): η2 ← η2 + 0.7 chip_exit_angle (clamped to ±40°) until |Δη2| < tol (the chip end then
+// moves along the turned chip, so the free chip is a streamline contour). Returns the last solve.
+struct Eta2FitResult {
+  std::vector<double> eta2, exit_angle;
+  bool converged = false;
+  CuttingResult final;
+};
+template <class SolveFn>
+Eta2FitResult fit_eta2(CuttingSetup c, SolveFn&& solve, int max_iter = 6, double tol = 0.25 * 3.14159265358979323846 / 180.0) {
+  Eta2FitResult out;
+  for (int it = 0; it < max_iter; ++it) {
+    CuttingResult r = solve(c);
+    out.eta2.push_back(c.eta2);
+    out.exit_angle.push_back(r.chip_exit_angle);
+    const double d = r.chip_exit_angle;
+    out.final = std::move(r);
+    if (std::abs(d) < tol) {
+      out.converged = true;
+      break;
+    }
+    // under-relaxed (the exit angle overshoots for μ ≥ 1) and kept inside ±40°
+    c.eta2 = std::clamp(c.eta2 + 0.7 * d, -40.0 * 3.14159265358979323846 / 180.0, 40.0 * 3.14159265358979323846 / 180.0);
+  }
+  return out;
+}
+
 // Steady-state loop of Fig. 4 read as "the velocity field tangent to the chip geometry contour"
 // (sec. 2.1): φ* is the shear angle at which the straight chip of Eq. 2 leaves the contact along the
 // rake face (chip_exit_angle η2 = 0). Start at φ_M: η2(φ_M) ≤ tol → φ* ≥ φ_M and φ_M is kept

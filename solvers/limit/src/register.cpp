@@ -226,6 +226,7 @@ SolverSpec cutting_spec() {
               p_int("steady_state", "steady-state loop of Fig. 4 around the solve (or the search): 1 = phi <- min(phi*, phi_M) with phi* the free-surface turning point; 2 = phi* where the chip leaves the contact along the rake face (stream angle eta2 = 0, velocity tangent to the chip contour): start at phi_M, keep it when eta2 <= 1e-3 rad, else step down by 2 deg and bisect to 0.5 deg", 0, 0, 2),
               p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3),
               param("eta2", Dim::angle, "stream angle of the chip beyond the contact (Fig. 5): the free chip turned by eta2 away from the tool (< 0: toward the tool side, restricted tool only)", 0.0, -0.7, 0.7),
+              param("chip_extra", Dim::dimensionless, "length of the chip mesh beyond the contact, in t2", 2.0, 0.5, 10.0),
               p_int("fit_eta2", "1: fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", 0, 0, 1),
               p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%); fixed geometry only", 0, 0, 10),
               p_int("refine", "kind of the adaptive refinement: 0 isotropic (longest-edge bisection), 1 anisotropic (recovered Hessian of the dissipation density -> metric-directed bisection + edge swaps, stretched along the shear bands)", 0, 0, 1)};
@@ -272,6 +273,7 @@ SolverSpec cutting_spec() {
     c.streamline = as_int(v, "streamline");
     c.stick_tol = v.at("stick_tol");
     c.eta2 = v.at("eta2");
+    c.chip_extra = v.at("chip_extra");
     const bool fit_eta = as_int(v, "fit_eta2") == 1;
     const int search_mode = as_int(v, "contact_search");
     const int loop_mode = as_int(v, "steady_state");

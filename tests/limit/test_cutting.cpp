@@ -186,4 +186,72 @@ BOOST_AUTO_TEST_CASE(frictional_chip_against_merchant) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(tangent_loop_frictionless_keeps_merchant) {
+  // Steady-state loop with φ* from the chip direction after the contact (η2, README 3.3):
+  // without friction the straight chip leaves the contact along the rake face at φ_M
+  // (|η2| < 1e-6 rad at n = 6 for α = 0 and 6°), so the loop keeps Merchant's angle after one
+  // solve and F̄c is the single-shear-plane value.
+  for (double alpha_deg : {0.0, 6.0}) {
+    CuttingSetup c;
+    c.alpha = alpha_deg * M_PI / 180;
+    c.mu = 0.0;
+    c.contact_length = 1.0 / std::cos(c.alpha);
+    c.n = 6;
+    const auto res = tangent_loop(c, [](const CuttingSetup& cs) { return solve_cutting(cs); });
+    const double pm = merchant_shear_angle(c.alpha, 0.0);
+    BOOST_TEST_MESSAGE("alpha=" << alpha_deg << " eta2(phi_M)=" << res.eta2.front() << " Fc_bar=" << res.final.fc_bar);
+    BOOST_TEST(res.at_merchant);
+    BOOST_TEST(res.phi.size() == 1u);
+    BOOST_TEST(std::abs(res.phi_star - pm) < 1e-12);
+    BOOST_TEST(std::abs(res.eta2.front()) < 1e-5);
+    BOOST_TEST(std::abs(res.final.fc_bar / merchant_force_bar(pm, c.alpha, 0.0) - 1.0) < 0.03);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(chip_exit_angle_sign_with_friction) {
+  // Table 2, t1 = 0.2 mm (α = 6°, μ = 0.6797, l = 2.5 t1), n = 6: at φ_M = 30.9° the free chip
+  // curls away from the tool (η2 > 0), at 24° it turns into it (η2 < 0 by the flux through the
+  // free rake line); the loop's φ* (26.9° at n = 6) lies between.
+  CuttingSetup c;
+  c.alpha = 6.0 * M_PI / 180;
+  c.mu = 0.6797;
+  c.contact_length = 2.5;
+  c.n = 6;
+  c.phi = merchant_shear_angle(c.alpha, c.mu);
+  const auto hi = solve_cutting(c);
+  c.phi = 24.0 * M_PI / 180;
+  const auto lo = solve_cutting(c);
+  BOOST_TEST_MESSAGE("eta2(phi_M)=" << hi.chip_exit_angle << " eta2(24 deg)=" << lo.chip_exit_angle
+                                    << " flux_rake_free " << hi.flux_rake_free << ", " << lo.flux_rake_free);
+  BOOST_TEST(hi.chip_exit_angle > 1e-3);
+  BOOST_TEST(hi.flux_rake_free < 0.0);  // leaves the rake line beyond l (lifts off)
+  BOOST_TEST(lo.chip_exit_angle < 1e-3);
+  BOOST_TEST(lo.flux_rake_free > 0.0);  // would cross the rake face beyond l
+}
+
+BOOST_AUTO_TEST_CASE(turned_free_chip_mass_balance) {
+  // η2 ≠ 0 (paper Fig. 5): the chip beyond l is a second parallelogram turned about the line C–D;
+  // the outward fluxes through the top,
+  // the chip back (straight + turned), the chip end and the rake line beyond l add up to the
+  // inflow t1 (incompressibility), which checks the classification of the turned surfaces.
+  for (double eta2 : {-0.3, 0.2}) {
+    CuttingSetup c;
+    c.n = 4;
+    c.contact_length = 1.0;
+    c.mu = 0.5;
+    c.alpha = 6.0 * M_PI / 180;
+    c.phi = merchant_shear_angle(c.alpha, c.mu);
+    c.eta2 = eta2;
+    const auto r = solve_cutting(c);
+    const double total = r.flux_top + r.flux_back + r.flux_end + r.flux_rake_free;
+    BOOST_TEST_MESSAGE("eta2=" << eta2 << " fluxes top " << r.flux_top << " back " << r.flux_back << " end " << r.flux_end
+                                << " rake " << r.flux_rake_free << " sum " << total << " exit angle " << r.chip_exit_angle);
+    BOOST_TEST(std::abs(total - 1.0) < 1e-6);
+    BOOST_TEST(r.flux_end > 0.5);
+  }
+  CuttingSetup bad;
+  bad.eta2 = 1.0;
+  BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -42,8 +42,19 @@ LimitModel cutting_model(const CuttingSetup& c) {
   const double lb = c.contact_length / Lc;
   const auto xc = piecewise_grid({0.0, lb, 1.0}, {uniform_grid(nc1), graded_grid(nc2, 1.1, 0.0)});
   const Mesh work = structured_quad({-Lw, 0.0}, O, S, {-Lw, t1}, xw, eta, Pattern::union_jack);
-  const Mesh chip = structured_quad(O, O + Lc * r, S + Lc * r, S, xc, eta, Pattern::union_jack);
-  return cutting_model_on_mesh(merge(work, chip, 1e-9 * t1), c);
+  if (c.eta2 == 0.0) {
+    const Mesh chip = structured_quad(O, O + Lc * r, S + Lc * r, S, xc, eta, Pattern::union_jack);
+    return cutting_model_on_mesh(merge(work, chip, 1e-9 * t1), c);
+  }
+  if (!(std::abs(c.eta2) < 0.25 * M_PI)) throw InputError("eta2", "stream angle must be in (-45, 45) deg");
+  // contact part O, C = l r, D = S + l r, S; free part turned by η2 about the line C–D
+  const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));
+  const Vector2d r2 = std::cos(c.eta2) * r - std::sin(c.eta2) * nr;
+  const double l = c.contact_length, Lf = Lc - l;
+  const Vector2d C = l * r, D = S + l * r;
+  const Mesh chip1 = structured_quad(O, C, D, S, uniform_grid(nc1), eta, Pattern::union_jack);
+  const Mesh chip2 = structured_quad(C, C + Lf * r2, D + Lf * r2, D, graded_grid(nc2, 1.1, 0.0), eta, Pattern::union_jack);
+  return cutting_model_on_mesh(merge(merge(work, chip1, 1e-9 * t1), chip2, 1e-9 * t1), c);
 }
 
 LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
@@ -190,6 +201,10 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     const Vector2d S(-c.t1 / std::tan(c.phi), c.t1);
     const Vector2d ns(std::sin(c.phi), std::cos(c.phi));
     const double tol = 1e-6 * c.t1;
+    // the free chip beyond l (turned by η2): direction r2, normal nr2 (toward the tool side)
+    const Vector2d r2 = std::cos(c.eta2) * r - std::sin(c.eta2) * nr, nr2 = std::cos(c.eta2) * nr + std::sin(c.eta2) * r;
+    const Vector2d C = c.contact_length * r, D = S + c.contact_length * r;
+    Vector2d v_end(0.0, 0.0);  // ∫ v ds over the chip end (Simpson)
     for (const auto& e : boundary_edges(mesh)) {
       const Vector2d n = boundary_normal(mesh, e);
       const Vector2d& xm = mesh.nodes[static_cast<std::size_t>(e.m)];
@@ -197,10 +212,17 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
       auto vn = [&](int nd) { return sol.velocity[2 * nd] * n.x() + sol.velocity[2 * nd + 1] * n.y(); };
       const double f = L * (vn(e.a) + 4.0 * vn(e.m) + vn(e.b)) / 6.0;
       if (std::abs(xm.y() - c.t1) < tol && xm.x() < S.x()) res.flux_top += f;
-      else if (std::abs(xm.dot(nr) - S.dot(nr)) < tol) res.flux_back += f;
-      else if (std::abs(n.dot(ns) - 1.0) < 1e-9 && xm.dot(r) > c.contact_length) res.flux_end += f;  // end ∥ OS
+      else if (std::abs(xm.dot(nr) - S.dot(nr)) < tol && (c.eta2 == 0.0 || (xm - D).dot(r) < 0.0)) res.flux_back += f;
+      else if (c.eta2 != 0.0 && std::abs((xm - D).dot(nr2)) < tol && (xm - D).dot(r2) > 0.0) res.flux_back += f;
+      else if (c.eta2 != 0.0 && std::abs((xm - C).dot(nr2)) < tol && (xm - C).dot(r2) > 0.0) res.flux_rake_free += f;
+      else if (std::abs(n.dot(ns) - 1.0) < 1e-9 && xm.dot(r) > c.contact_length) {  // end ∥ OS
+        res.flux_end += f;
+        auto v = [&](int nd) { return Vector2d(sol.velocity[2 * nd], sol.velocity[2 * nd + 1]); };
+        v_end += L * (v(e.a) + 4.0 * v(e.m) + v(e.b)) / 6.0;
+      }
       else if (std::abs(xm.dot(nr)) < tol && xm.dot(r) > 0.0) res.flux_rake_free += f;  // separation or free part
     }
+    res.chip_exit_angle = std::atan2(-v_end.dot(nr2), v_end.dot(r2));  // relative to the (turned) chip
     double rn = 0.0;
     for (Eigen::Index i = 0; i < sol.slider_rn.size(); ++i) rn += std::abs(sol.slider_rn[i]);
     res.streamline_force = rn / (c.k * c.t1);

@@ -223,8 +223,11 @@ SolverSpec cutting_spec() {
               p_int("coulomb_fixed_point", "1: non-associated Coulomb (fixed point on the pressure), 0: coupled cone", 1, 0, 1),
               p_int("streamline", "free surfaces held as streamlines (v.n = 0): 0 none, 1 uncut top, 2 top + chip back, 3 top + chip back beyond l", 1, 0, 3),
               p_int("contact_search", "unrestricted tool: 1 = grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact; 2 = natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)", 0, 0, 2),
-              p_int("steady_state", "1: steady-state loop of Fig. 4 (phi <- min(phi*, phi_M)) around the solve (or the search)", 0, 0, 1),
+              p_int("steady_state", "steady-state loop of Fig. 4 around the solve (or the search): 1 = phi <- min(phi*, phi_M) with phi* the free-surface turning point; 2 = phi* where the chip leaves the contact along the rake face (stream angle eta2 = 0, velocity tangent to the chip contour): start at phi_M, keep it when eta2 <= 1e-3 rad, else step down by 2 deg and bisect to 0.5 deg", 0, 0, 2),
               p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3),
+              param("eta2", Dim::angle, "stream angle of the chip beyond the contact (Fig. 5): the free chip turned by eta2 away from the tool (< 0: toward the tool side, restricted tool only)", 0.0, -0.7, 0.7),
+              param("chip_extra", Dim::dimensionless, "length of the chip mesh beyond the contact, in t2", 2.0, 0.5, 10.0),
+              p_int("fit_eta2", "1: fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", 0, 0, 1),
               p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%); fixed geometry only", 0, 0, 10),
               p_int("refine", "kind of the adaptive refinement: 0 isotropic (longest-edge bisection), 1 anisotropic (recovered Hessian of the dissipation density -> metric-directed bisection + edge swaps, stretched along the shear bands)", 0, 0, 1)};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
@@ -243,8 +246,10 @@ SolverSpec cutting_spec() {
                {"flux_top", Dim::dimensionless, "volume flux out of the uncut top surface / (v t1)"},
                {"flux_back", Dim::dimensionless, "volume flux out of the chip back / (v t1)"},
                {"flux_end", Dim::dimensionless, "volume flux out of the chip end / (v t1)"},
-               {"flux_rake_free", Dim::dimensionless, "volume flux out of the rake-face line / (v t1): free part beyond l (< 0: into the tool) and separating contact nodes"},
+               {"flux_rake_free", Dim::dimensionless, "volume flux out of the rake-face line / (v t1): free part beyond l (> 0: into the tool, < 0: lifting off) and separating contact nodes (< 0)"},
                {"streamline_force", Dim::dimensionless, "sum |normal reaction| on the streamline surfaces / (k t1 w)"},
+               {"eta2", Dim::angle, "direction of the chip end velocity relative to the chip beyond the contact (mean velocity over the chip end; > 0 away from the tool)"},
+               {"eta2_geometry", Dim::angle, "stream angle eta2 of the chip geometry beyond the contact (given or fitted)"},
                {"max_sigma_eq_over_k", Dim::dimensionless, "max sqrt(J2)/k over all stress points"},
                {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},
                {"solves", Dim::dimensionless, "limit-analysis problems solved (Coulomb steps excluded)"},
@@ -267,10 +272,16 @@ SolverSpec cutting_spec() {
     c.coulomb_fixed_point = as_int(v, "coulomb_fixed_point") == 1;
     c.streamline = as_int(v, "streamline");
     c.stick_tol = v.at("stick_tol");
+    c.eta2 = v.at("eta2");
+    c.chip_extra = v.at("chip_extra");
+    const bool fit_eta = as_int(v, "fit_eta2") == 1;
     const int search_mode = as_int(v, "contact_search");
-    const bool search = search_mode > 0, loop = as_int(v, "steady_state") == 1;
+    const int loop_mode = as_int(v, "steady_state");
+    const bool search = search_mode > 0, loop = loop_mode == 1, tangent = loop_mode == 2;
+    if (fit_eta && (search || loop || tangent))
+      throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = 0, steady_state = 0)");
     if (as_int(v, "adapt_steps") > 0 && (search || loop))
-      throw InputError("adapt_steps", "adaptive refinement is only available with a fixed geometry (contact_search = 0, steady_state = 0)");
+      throw InputError("adapt_steps", "adaptive refinement is only available with contact_search = 0 and steady_state = 0 or 2");
     if (progress) progress(0.0, "solving");
     const auto t0 = std::chrono::steady_clock::now();
     int solves = 0;
@@ -302,7 +313,29 @@ SolverSpec cutting_spec() {
       return std::move(res.final);
     };
     CuttingResult r;
-    if (loop) {  // Fig. 4: φ ← min(φ*, φ_M), at most 4 updates, |Δφ| < 0.5°
+    std::vector<std::string> out_notes_pending;
+    std::vector<double> loop_eta;
+    bool tangent_converged = true, tangent_at_merchant = false;
+    if (tangent) {  // Fig. 4 with phi* from the chip direction after the contact (eta2 = 0)
+      const double l_given = c.contact_length;
+      auto res = tangent_loop(c, [&](CuttingSetup cs) {
+        if (search) cs.contact_length = l_given;
+        CuttingResult rr = solve_once(cs);
+        return rr;
+      });
+      loop_phi = res.phi;
+      loop_eta = res.eta2;
+      loop_fc = res.fc_bar;
+      tangent_converged = res.converged;
+      tangent_at_merchant = res.at_merchant;
+      c.phi = res.phi_star;
+      r = std::move(res.final);
+      if (search_mode == 2) {  // l_sep of the final configuration
+        double lsep = 0.0;
+        for (std::size_t i = 0; i < r.s.size(); ++i) lsep = r.s[i];
+        c.contact_length = lsep;
+      }
+    } else if (loop) {  // Fig. 4: φ ← min(φ*, φ_M), at most 4 updates, |Δφ| < 0.5°
       const double phi_m = merchant_shear_angle(a, mu);
       for (int it = 0; it < 5; ++it) {
         r = solve_once(c);
@@ -315,6 +348,13 @@ SolverSpec cutting_spec() {
         c.phi = next;
         if (search) c.contact_length = t1 / std::cos(a) / t1;
       }
+    } else if (fit_eta) {
+      auto fit = fit_eta2(c, solve_once);
+      loop_eta = fit.eta2;
+      loop_phi = fit.exit_angle;  // reused below as the fit history
+      c.eta2 = fit.eta2.back();
+      if (!fit.converged) out_notes_pending.push_back("eta2 fit not converged after 6 solves (last exit angle " + std::to_string(fit.exit_angle.back()) + " rad)");
+      r = std::move(fit.final);
     } else {
       r = solve_once(c);
     }
@@ -345,6 +385,16 @@ SolverSpec cutting_spec() {
     put("flux_end", r.flux_end, "1");
     put("flux_rake_free", r.flux_rake_free, "1");
     put("streamline_force", r.streamline_force, "1");
+    put("eta2", r.chip_exit_angle, "rad");
+    put("eta2_geometry", c.eta2, "rad");
+    for (auto& nt : out_notes_pending) out.notes.push_back(nt);
+    if (fit_eta) {
+      Table hist;
+      hist.name = "eta2_fit";
+      hist.add("eta2", "rad", loop_eta);
+      hist.add("exit_angle", "rad", loop_phi);
+      out.tables.push_back(std::move(hist));
+    }
     put("solves", solves, "1");
     put("elements", r.model.mesh.num_elements(), "1");
     {
@@ -388,6 +438,17 @@ SolverSpec cutting_spec() {
       layer.add("dissipation_density", "1", ld);
       out.tables.push_back(std::move(layer));
     }
+    if (tangent) {
+      Table hist;
+      hist.name = "steady_state";
+      hist.add("phi", "rad", loop_phi);
+      hist.add("eta2", "rad", loop_eta);
+      hist.add("fc_bar", "1", loop_fc);
+      out.tables.push_back(std::move(hist));
+      if (!tangent_converged) out.notes.push_back("steady-state (eta2) loop: eta2 > 0 down to phi = 10 deg, not converged");
+      out.notes.push_back(tangent_at_merchant ? "steady-state (eta2) loop: eta2(phi_M) <= 1e-3 rad, phi_M kept (phi* >= phi_M)"
+                                              : "steady-state (eta2) loop: phi* < phi_M where the chip leaves the contact along the rake face");
+    }
     if (loop) {
       Table hist;
       hist.name = "steady_state";
@@ -423,7 +484,7 @@ SolverSpec cutting_spec() {
     contact.add("stick", "1", stk);
     out.tables.push_back(std::move(contact));
     add_snapshot(out, r.model, r.solution, t1, 1.0);
-    out.notes.push_back(std::string(loop ? "steady-state loop (Fig. 4) on phi; " : "fixed shear angle; ") +
+    out.notes.push_back(std::string(loop || tangent ? "steady-state loop (Fig. 4) on phi; " : "fixed shear angle; ") +
                         (search ? "contact length searched (sigma_n -> 0); " : "contact length imposed; ") +
                         "structured mesh, no adaptive refinement");
     out.notes.push_back("free surfaces held as streamlines: mode " + std::to_string(c.streamline) +

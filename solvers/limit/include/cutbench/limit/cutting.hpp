@@ -8,6 +8,8 @@
 // bounded by the shear plane OS (S = (−t1 cot φ, t1)), the rake face, and its back surface at
 // distance t2 = t1 cos(φ − α)/sin φ (Eq. 2). The rake face is in permanent contact (w_n = 0)
 // with Coulomb friction μ over the contact length l from the tip; beyond l the chip is free.
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "cutbench/limit/limit_analysis.hpp"
@@ -41,6 +43,12 @@ struct CuttingSetup {
   // a contact node sticks when |w_t| < stick_tol · v_chip, v_chip = sin φ / cos(φ − α) the speed
   // of the rigid chip (the tip node is fixed, so w_t rises continuously from zero)
   double stick_tol = 1e-3;
+  // stream angle η2 of the paper's Fig. 5: the chip beyond the contact (s > l) is a parallelogram
+  // along r2 = cos η2 r − sin η2 n_r, i.e. turned by η2 away from the tool (> 0) or toward the
+  // tool side (< 0, admissible only for a restricted tool whose rake face ends at l). 0: straight
+  // chip (Eq. 2). The chip back beyond l is then not a streamline surface (streamline ≥ 2 holds
+  // the straight part only).
+  double eta2 = 0.0;
 };
 
 struct CuttingResult {
@@ -64,12 +72,17 @@ struct CuttingResult {
   // volume fluxes (per unit width, unit inflow speed → t1 in total) leaving through the uncut
   // top surface, the chip back and the chip end; steady state needs top = back = 0
   double flux_top = 0.0, flux_back = 0.0, flux_end = 0.0;
-  // through the rake-face line: the free part beyond l (< 0: the chip moves into the tool there)
+  // through the rake-face line (outward from the chip, i.e. > 0 into the tool): the free part
+  // beyond l (> 0: the chip would cross the rake face, < 0: it lifts off / curls away)
   // and, with the unilateral contact, the separating nodes (v·n = −z < 0: the chip lifts off)
   double flux_rake_free = 0.0;
   // resultant normal force on the streamline (slider) surfaces, |Σ r_n| / (k t1): how far the
   // imposed geometry is from a traction-free steady state (0 when streamline = 0); Σ|r_n|/(k t1)
   double streamline_force = 0.0;
+  // direction of the chip after the contact (the paper's stream angle η2, Fig. 5): angle of the
+  // mean velocity ∫v ds over the chip end relative to the rake direction r, > 0 away from the tool
+  // (the free chip lifts off / curls away), < 0 toward it (it would penetrate the rake face beyond l)
+  double chip_exit_angle = 0.0;
 };
 
 double chip_thickness(double t1, double phi, double alpha);  // Eq. 2
@@ -102,6 +115,54 @@ SteadyStateResult steady_state(CuttingSetup setup, const SteadyStateOptions& opt
 
 // Mean normal contact stress over the last `fraction` of the contact length (σ_n/k, < 0 in
 // compression), from the lumped profile of a solved case.
+// Fit of η2 (restricted tool): η2 ← η2 + 0.7 chip_exit_angle (clamped to ±40°) until |Δη2| < tol (the chip end then
+// moves along the turned chip, so the free chip is a streamline contour). Returns the last solve.
+struct Eta2FitResult {
+  std::vector<double> eta2, exit_angle;
+  bool converged = false;
+  CuttingResult final;
+};
+template <class SolveFn>
+Eta2FitResult fit_eta2(CuttingSetup c, SolveFn&& solve, int max_iter = 6, double tol = 0.25 * 3.14159265358979323846 / 180.0) {
+  Eta2FitResult out;
+  for (int it = 0; it < max_iter; ++it) {
+    CuttingResult r = solve(c);
+    out.eta2.push_back(c.eta2);
+    out.exit_angle.push_back(r.chip_exit_angle);
+    const double d = r.chip_exit_angle;
+    out.final = std::move(r);
+    if (std::abs(d) < tol) {
+      out.converged = true;
+      break;
+    }
+    // under-relaxed (the exit angle overshoots for μ ≥ 1) and kept inside ±40°
+    c.eta2 = std::clamp(c.eta2 + 0.7 * d, -40.0 * 3.14159265358979323846 / 180.0, 40.0 * 3.14159265358979323846 / 180.0);
+  }
+  return out;
+}
+
+// Steady-state loop of Fig. 4 read as "the velocity field tangent to the chip geometry contour"
+// (sec. 2.1): φ* is the shear angle at which the straight chip of Eq. 2 leaves the contact along the
+// rake face (chip_exit_angle η2 = 0). Start at φ_M: η2(φ_M) ≤ tol → φ* ≥ φ_M and φ_M is kept
+// (Molinari–Moufki); otherwise step φ down by `step` until η2 ≤ tol, then bisect the bracket down
+// to `tol_phi`. The result is the configuration at the lower end of the last bracket (η2 ≤ tol).
+struct TangentLoopOptions {
+  double step = 2.0 * 3.14159265358979323846 / 180.0;
+  double tol_phi = 0.5 * 3.14159265358979323846 / 180.0;
+  double tol_eta = 1e-3;  // rad
+  double phi_min = 10.0 * 3.14159265358979323846 / 180.0;
+};
+struct TangentLoopResult {
+  std::vector<double> phi, eta2, fc_bar;  // every solve
+  double phi_star = 0.0;
+  bool at_merchant = false;  // η2(φ_M) ≤ tol: φ* ≥ φ_M
+  bool converged = false;
+  CuttingResult final;
+};
+// `solve` maps a setup (φ set) to a solved case, so that the caller chooses the mesh / refinement.
+template <class SolveFn>
+TangentLoopResult tangent_loop(CuttingSetup c, SolveFn&& solve, const TangentLoopOptions& opt = {});
+
 double end_normal_stress(const CuttingResult& r, double contact_length, double fraction = 0.1);
 
 // Unrestricted tool (paper sec. 2.1): starting from l = t1/cos α, increase l in steps until the
@@ -148,5 +209,57 @@ CuttingResult adapt_cutting(const CuttingSetup& setup, int steps, double fractio
 CuttingResult adapt_cutting(const CuttingSetup& setup, const AdaptOptions& opt,
                             std::vector<CuttingAdaptStep>* history = nullptr, const SocpSettings& settings = {});
 CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& setup, const SocpSettings& settings = {});
+
+template <class SolveFn>
+TangentLoopResult tangent_loop(CuttingSetup c, SolveFn&& solve, const TangentLoopOptions& opt) {
+  TangentLoopResult out;
+  auto eval = [&](double phi) {
+    c.phi = phi;
+    CuttingResult r = solve(c);
+    out.phi.push_back(phi);
+    out.eta2.push_back(r.chip_exit_angle);
+    out.fc_bar.push_back(r.fc_bar);
+    return r;
+  };
+  double hi = merchant_shear_angle(c.alpha, c.mu);
+  CuttingResult r = eval(hi);
+  if (r.chip_exit_angle <= opt.tol_eta) {
+    out.phi_star = hi;
+    out.at_merchant = out.converged = true;
+    out.final = std::move(r);
+    return out;
+  }
+  double lo = hi;
+  CuttingResult r_lo;
+  bool bracket = false;
+  while (lo - opt.step >= opt.phi_min) {
+    lo -= opt.step;
+    r_lo = eval(lo);
+    if (r_lo.chip_exit_angle <= opt.tol_eta) {
+      bracket = true;
+      break;
+    }
+    hi = lo;
+  }
+  if (!bracket) {  // η2 > 0 down to phi_min: report the last (smallest) angle, not converged
+    out.phi_star = lo;
+    out.final = std::move(r_lo);
+    return out;
+  }
+  while (hi - lo > opt.tol_phi * (1.0 + 1e-9)) {
+    const double mid = 0.5 * (lo + hi);
+    CuttingResult rm = eval(mid);
+    if (rm.chip_exit_angle <= opt.tol_eta) {
+      lo = mid;
+      r_lo = std::move(rm);
+    } else {
+      hi = mid;
+    }
+  }
+  out.phi_star = lo;
+  out.converged = true;
+  out.final = std::move(r_lo);
+  return out;
+}
 
 }  // namespace cutbench::limit

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
+#include "cutbench/efg/cutting.hpp"
 #include "cutbench/efg/explicit.hpp"
 
 using namespace cutbench::efg;
@@ -244,6 +246,85 @@ BOOST_AUTO_TEST_CASE(ramped_tool_motion_is_continuous) {
   }
   tool.ramp_time = 0.0;
   BOOST_TEST(std::abs(tool.displacement(T).x() - V * T) < 1e-15);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(efg_chip_completion)
+
+// Chip-completion guard on its own: Gauss points of 2 x 2 rules on unit cells (hx = hy = 1), the
+// cut line at y_E = 4, the free surface at 10, the edge's reference position at x = 5.
+namespace {
+std::vector<Vec2> gauss_lattice() {
+  std::vector<Vec2> g;
+  for (int i = 0; i < 20; ++i) {
+    for (int j = 0; j < 10; ++j) {
+      for (double a : {0.2113, 0.7887}) {
+        for (double b : {0.2113, 0.7887}) g.emplace_back(i + a, j + b);
+      }
+    }
+  }
+  return g;
+}
+// Failed band of half-width w around the ray from (5, 4) at angle th (deg), above the cut line,
+// optionally interrupted between heights y0 and y1.
+std::function<bool(std::size_t)> band(const std::vector<Vec2>& g, double th, double w, double y0 = 1e9,
+                                      double y1 = -1e9) {
+  const double t = th * 3.14159265358979323846 / 180.0;
+  const Vec2 o(5.0, 4.0), e(std::cos(t), std::sin(t)), n(-std::sin(t), std::cos(t));
+  return [&g, o, e, n, w, y0, y1](std::size_t k) {
+    const Vec2 r = g[k] - o;
+    return g[k].y() > 4.0 && r.dot(e) > -0.5 && std::abs(r.dot(n)) < w && !(g[k].y() > y0 && g[k].y() < y1);
+  };
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(edge_to_surface_path) {
+  const auto g = gauss_lattice();
+  EdgeSurfacePath p(g, 1.0, 1.0, 4.0, 10.0);
+  BOOST_TEST(p.size() == g.size());
+  BOOST_TEST(!p.connected([](std::size_t) { return false; }, 5.0, true));
+  // A failed band along fibres at 30 and 75 deg, rising ahead of the edge, separates the chip.
+  for (double th : {30.0, 75.0}) {
+    BOOST_TEST(p.connected(band(g, th, 0.6), 5.0, true));
+    BOOST_TEST(p.connected(band(g, th, 0.6), 5.0, false));
+    // One intact layer (1.2 high) in the band: not connected.
+    BOOST_TEST(!p.connected(band(g, th, 0.6, 6.5, 7.7), 5.0, true));
+    // Seen from an edge 3 further on, the band's root is behind it: no path starts there.
+    BOOST_TEST(!p.connected(band(g, th, 0.6), 8.0 + 6.0 / std::tan(th * 3.14159265358979323846 / 180.0), false));
+  }
+  // A band leaning backwards (over the tool, behind the edge) counts only without ahead_only.
+  BOOST_TEST(p.connected(band(g, 120.0, 0.6), 5.0, false));
+  BOOST_TEST(!p.connected(band(g, 120.0, 0.6), 5.0, true));
+  // A band that stops one cell below the surface does not connect.
+  BOOST_TEST(!p.connected(band(g, 75.0, 0.6, 8.9, 11.0), 5.0, true));
+}
+
+BOOST_AUTO_TEST_CASE(time_step_drop_detector) {
+  // Constant and slowly falling steps never fire; a sudden 35 % drop fires only with the guard;
+  // a collapse event counts as a drop; nothing before `armed`.
+  DropDetector d(0.3, 200, 1.0);
+  double dt = 1.0;
+  for (int k = 0; k < 2000; ++k) {
+    dt *= 0.9995;  // 63 % over 2000 steps, 10 % per 200-step window
+    BOOST_TEST(!d.update(dt, false, true, 1e-6 * k));
+  }
+  BOOST_TEST(d.first_drop() == -1.0);
+  DropDetector e(0.3, 200, 1.0);
+  for (int k = 0; k < 300; ++k) e.update(1.0, false, true, 0.0);
+  BOOST_TEST(!e.update(0.65, false, true, 1.0, false));  // not armed
+  BOOST_TEST(e.first_drop() == -1.0);
+  BOOST_TEST(!e.update(0.65, false, false, 2.0));        // guard not met: recorded as first drop
+  BOOST_TEST(e.first_drop() == 2.0);
+  BOOST_TEST(e.update(0.65, false, true, 3.0));
+  BOOST_TEST(e.ratio() > 0.64);
+  BOOST_TEST(e.ratio() < 0.66);
+  BOOST_TEST(e.first_drop() == 2.0);
+  DropDetector c(0.3, 200, 1.0);
+  BOOST_TEST(!c.update(1.0, true, false, 1.0));
+  BOOST_TEST(c.update(1.0, true, true, 1.5));  // collapse-erosion event with the guard met
+  DropDetector off(0.0, 200, 1.0);
+  BOOST_TEST(!off.update(0.1, true, true, 1.0));  // drop = 0: detector off
 }
 
 BOOST_AUTO_TEST_SUITE_END()

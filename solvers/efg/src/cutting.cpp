@@ -27,6 +27,62 @@ std::vector<Vec2> edge_vertices(const Vec2& E, double rake, double clearance, do
   return v;
 }
 
+EdgeSurfacePath::EdgeSurfacePath(std::vector<Vec2> gauss, double hx, double hy, double y_edge, double top)
+    : x_(std::move(gauss)), hx_(hx), hy_(hy), yE_(y_edge), top_(top) {
+  const double r = 0.75 * std::max(hx, hy);
+  CellList cl;
+  cl.build(x_, r);
+  std::vector<int> near;
+  start_.assign(1, 0);
+  for (std::size_t g = 0; g < x_.size(); ++g) {
+    cl.query(x_[g], r, near);
+    for (int k : near) {
+      if (k != static_cast<int>(g) && (x_[k] - x_[g]).norm() < r) adj_.push_back(k);
+    }
+    start_.push_back(static_cast<int>(adj_.size()));
+  }
+  seen_.resize(x_.size());
+}
+
+bool EdgeSurfacePath::connected(const std::function<bool(std::size_t)>& failed, double cut_tip, bool ahead_only) {
+  std::fill(seen_.begin(), seen_.end(), 0);
+  queue_.clear();
+  const double xmin = cut_tip - hx_;
+  for (std::size_t g = 0; g < x_.size(); ++g) {
+    const Vec2& X = x_[g];
+    if (X.y() > yE_ && X.y() < yE_ + 1.5 * hy_ && X.x() > xmin && X.x() < cut_tip + 1.5 * hx_ && failed(g)) {
+      seen_[g] = 1;
+      queue_.push_back(static_cast<int>(g));
+    }
+  }
+  for (std::size_t q = 0; q < queue_.size(); ++q) {
+    const int g = queue_[q];
+    if (x_[g].y() > top_ - 0.5 * hy_) return true;
+    for (int e = start_[g]; e < start_[g + 1]; ++e) {
+      const int k = adj_[e];
+      if (seen_[k] || (ahead_only && (x_[k].x() <= xmin || x_[k].y() <= yE_))) continue;
+      if (failed(static_cast<std::size_t>(k))) {
+        seen_[k] = 1;
+        queue_.push_back(k);
+      }
+    }
+  }
+  return false;
+}
+
+bool DropDetector::update(double dt, bool collapse_event, bool guard, double travel, bool armed) {
+  bool fire = false;
+  if (drop_ > 0.0 && armed && (dt < (1.0 - drop_) * mean_ || collapse_event)) {
+    if (first_drop_ < 0.0) first_drop_ = travel;
+    if (guard) {
+      fire = true;
+      ratio_ = dt / mean_;
+    }
+  }
+  mean_ += (dt - mean_) / window_;
+  return fire;
+}
+
 CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double)>& progress) {
   if (!(s.depth > 0.0)) throw InputError("depth", "must be > 0");
   if (s.depth >= s.work_height) throw InputError("depth", "must be smaller than the workpiece height");
@@ -110,7 +166,6 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   Vec2 acc = Vec2::Zero(), acc_all = Vec2::Zero();
   double tacc = 0.0, tacc_all = 0.0;
   int nacc = 0;
-  double ema = r.dt_initial;
   double cut_tip = xf;  // reference x of the cut line's end
   std::vector<CuttingSnapshot> cand;
   double next_snap = 0.0;
@@ -128,52 +183,18 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     }
     cand.push_back(std::move(sn));
   };
-  // Gauss-point adjacency in the reference configuration (for the damage-path guard).
-  const double hmax = std::max(hx, hy);
-  std::vector<std::vector<int>> nbr(d.gauss.size());
-  {
-    std::vector<Vec2> gx(d.gauss.size());
-    for (std::size_t g = 0; g < gx.size(); ++g) gx[g] = d.gauss[g].x;
-    CellList cl;
-    cl.build(gx, 0.75 * hmax);
-    std::vector<int> near;
-    for (std::size_t g = 0; g < gx.size(); ++g) {
-      cl.query(gx[g], 0.75 * hmax, near);
-      for (int k : near) {
-        if (k != static_cast<int>(g) && (gx[k] - gx[g]).norm() < 0.75 * hmax) nbr[g].push_back(k);
-      }
-    }
-  }
-  std::vector<char> seen(d.gauss.size());
-  std::vector<int> queue;
-  auto damage_path = [&]() {
-    std::fill(seen.begin(), seen.end(), 0);
-    queue.clear();
-    for (std::size_t g = 0; g < d.gauss.size(); ++g) {
-      const Vec2& X = d.gauss[g].x;
-      const auto dm = solver.damage(g);
-      if ((dm[0] > 0.5 || dm[1] > 0.5) && X.y() > yE && X.y() < yE + 1.5 * hy && X.x() > cut_tip - hx &&
-          X.x() < cut_tip + 1.5 * hx) {
-        seen[g] = 1;
-        queue.push_back(static_cast<int>(g));
-      }
-    }
-    for (std::size_t q = 0; q < queue.size(); ++q) {
-      const int g = queue[q];
-      if (d.gauss[g].x.y() > Ly - 0.5 * hy) return true;
-      for (int k : nbr[g]) {
-        if (seen[k]) continue;
-        const auto dm = solver.damage(k);
-        if (dm[0] > 0.5 || dm[1] > 0.5) {
-          seen[k] = 1;
-          queue.push_back(k);
-        }
-      }
-    }
-    return false;
+  // Edge-to-surface path search in the reference configuration (completion guard, diagnostics).
+  std::vector<Vec2> gx(d.gauss.size());
+  for (std::size_t g = 0; g < gx.size(); ++g) gx[g] = d.gauss[g].x;
+  EdgeSurfacePath paths(std::move(gx), hx, hy, yE, Ly);
+  auto damaged = [&](std::size_t g) {
+    const auto dm = solver.damage(g);
+    return dm[0] > 0.5 || dm[1] > 0.5;
   };
-  bool path = false;
+  auto separated = [&](std::size_t g) { return solver.eroded(g); };
+  bool path = false, sep = false;
   std::size_t ncoll_prev = 0;
+  DropDetector detector(s.drop, s.drop_window, r.dt_initial);
   while (solver.time() < t_end) {
     const double dt = solver.step();
     r.dt_min = std::min(r.dt_min, dt);
@@ -185,15 +206,14 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     const std::size_t ncoll = solver.collapse_eroded_count();
     const bool collapse_event = ncoll > ncoll_prev;
     ncoll_prev = ncoll;
-    if (s.drop > 0.0 && trav >= s.min_travel && (dt < (1.0 - s.drop) * ema || collapse_event)) {
-      if (r.travel_first_drop < 0.0) r.travel_first_drop = trav;
-      if (!s.completion_guard || path) {
-        r.t_complete = solver.time();
-        r.travel_complete = trav;
-        r.dt_drop_ratio = dt / ema;
-      }
+    const bool guard = s.completion_guard == CompletionGuard::none ||
+                       (s.completion_guard == CompletionGuard::damage_path && path) ||
+                       (s.completion_guard == CompletionGuard::separation && sep);
+    if (detector.update(dt, collapse_event, guard, trav, trav >= s.min_travel)) {
+      r.t_complete = solver.time();
+      r.travel_complete = trav;
+      r.dt_drop_ratio = detector.ratio();
     }
-    ema += (dt - ema) / std::max(1, s.drop_window);
     const Vec2 f = solver.tool_force();
     acc += f * dt;
     tacc += dt;
@@ -231,9 +251,23 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
       tacc = 0.0;
       nacc = 0;
       if (progress) progress(solver.time() / t_end);
-      if (!path && r.t_contact >= 0.0 && damage_path()) {
+      if (r.travel_first_failure < 0.0 && r.t_contact >= 0.0) {
+        for (std::size_t g = 0; g < solver.num_gauss(); ++g) {
+          const auto dm = solver.damage(g);
+          if (dm[0] + dm[1] + dm[2] > 0.0) {
+            r.travel_first_failure = trav;
+            r.Fc_first_failure = r.Fc.back();
+            break;
+          }
+        }
+      }
+      if (!path && r.t_contact >= 0.0 && paths.connected(damaged, cut_tip, false)) {
         path = true;
         r.travel_path = trav;
+      }
+      if (!sep && r.t_contact >= 0.0 && paths.connected(separated, cut_tip, true)) {
+        sep = true;
+        r.travel_separated = trav;
       }
       if (s.snapshots > 0 && trav >= next_snap) {
         take_snapshot();
@@ -244,6 +278,7 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     if (dt < 1e-3 * r.dt_initial) break;  // collapsed nodes: run broken
   }
   r.steps = solver.steps();
+  r.travel_first_drop = detector.first_drop();
   if (tacc_all > 0.0) {
     r.Fc_mean = -acc_all.x() / tacc_all;
     r.Ft_mean = acc_all.y() / tacc_all;

@@ -186,7 +186,9 @@ void register_solvers(SolverRegistry& registry) {
                  p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99),
                  p("drop_window", Dim::dimensionless, "steps of the running mean of dt", 200, 1, 1e6),
                  p("min_travel", Dim::length, "no chip-completion detection before this travel", 0.0, 0, inf),
-                 p("completion_guard", Dim::dimensionless, "1: a drop counts only once damage connects edge and free surface", 1, 0, 1),
+                 p("completion_guard", Dim::dimensionless,
+                   "a drop counts only once 1: damaged (2: eroded, ahead of the edge) Gauss points connect edge and free surface; 0: always",
+                   2, 0, 2),
                  p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0),
                  p("snapshots", Dim::dimensionless, "damage snapshots kept (k/n of the run)", 3, 0, 20)}) {
     cut.params.push_back(q);
@@ -200,6 +202,9 @@ void register_solvers(SolverRegistry& registry) {
                  {"chip_complete", Dim::dimensionless, "1 when the time-step drop was detected"},
                  {"travel_path", Dim::length, "travel at which damage first connects the edge to the free surface (-1: never)"},
                  {"travel_first_drop", Dim::length, "travel of the first time-step drop, guard or not (-1: none)"},
+                 {"travel_first_failure", Dim::length, "travel at the first Gauss-point failure (any mode; -1: none)"},
+                 {"F_c_first_failure", Dim::force_per_width, "window-mean cutting force when the first Gauss point fails (elastic up to there)"},
+                 {"travel_separated", Dim::length, "travel at which eroded Gauss points ahead of the edge first connect it to the free surface (-1: never)"},
                  {"dt_drop_ratio", Dim::dimensionless, "dt / running mean at detection (1: none)"},
                  {"dt_min_ratio", Dim::dimensionless, "smallest / initial time step"},
                  {"fibre_damaged_fraction", Dim::dimensionless, "Gauss points with fibre damage"},
@@ -265,7 +270,7 @@ void register_solvers(SolverRegistry& registry) {
     s.drop = v.at("drop");
     s.drop_window = static_cast<int>(std::lround(v.at("drop_window")));
     s.min_travel = v.at("min_travel");
-    s.completion_guard = v.at("completion_guard") > 0.5;
+    s.completion_guard = static_cast<CompletionGuard>(static_cast<int>(std::lround(v.at("completion_guard"))));
     s.cfl = v.at("cfl");
     s.snapshots = static_cast<int>(std::lround(v.at("snapshots")));
     const auto t0 = std::chrono::steady_clock::now();
@@ -303,6 +308,9 @@ void register_solvers(SolverRegistry& registry) {
                    {"chip_complete", r.t_complete >= 0.0 ? 1.0 : 0.0},
                    {"travel_path", r.travel_path},
                    {"travel_first_drop", r.travel_first_drop},
+                   {"travel_separated", r.travel_separated},
+                   {"travel_first_failure", r.travel_first_failure},
+                   {"F_c_first_failure", r.Fc_first_failure},
                    {"dt_drop_ratio", r.dt_drop_ratio},
                    {"dt_min_ratio", r.dt_min / r.dt_initial},
                    {"fibre_damaged_fraction", static_cast<double>(r.fibre_damaged) / ng},
@@ -333,7 +341,7 @@ void register_solvers(SolverRegistry& registry) {
                    {"rake_used", s.rake},
                    {"speed_used", s.speed},
                    {"wave_speed", m.wave_speed()}};
-    out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
+    out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"F_c_first_failure", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
     out.notes.push_back("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
                         "edge, constant friction, fixed bottom and far end and the time scaling are assumptions; "
                         "mode-dependent degradation factors (Camanho & Matthews 1999, Tserpes et al. 2002; "

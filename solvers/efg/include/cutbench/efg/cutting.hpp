@@ -6,6 +6,7 @@
 // criterion across the cut line behind the tool edge and the re-entrant notch corner, Eq 39-43
 // contact, F_c and F_t per unit width, termination at chip completion detected from the drop of
 // the Eq 56 time step (section 5.4, Fig 10). Choices are stated in solvers/efg/README.md.
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -13,6 +14,8 @@
 #include "cutbench/efg/explicit.hpp"
 
 namespace cutbench::efg {
+
+enum class CompletionGuard { none = 0, damage_path = 1, separation = 2 };
 
 struct CuttingSetup {
   Orthotropic material;
@@ -51,11 +54,14 @@ struct CuttingSetup {
   double drop = 0.3;
   int drop_window = 200;
   double min_travel = 0.0;       // no detection before this travel (start-up transient)
-  // Guard: a drop counts as chip completion only once damaged Gauss points (fibre or matrix)
-  // connect the tool edge to the free surface (the paper's definition of completion, section 5.4,
-  // checked geometrically every record window). Without it, local crushing at the edge of fine
-  // meshes fires the detector after a few micrometres.
-  bool completion_guard = true;
+  // Guard (checked every record window): a drop counts as chip completion only once
+  //  - damage_path: damaged Gauss points (fibre or matrix) connect the tool edge to the free surface
+  //    (the paper's "damage propagating from the cutting point to the free surface", section 5.4);
+  //  - separation: Gauss points that carry no stress (eroded: fibre and matrix failed) connect the
+  //    edge to the free surface through material ahead of the edge, i.e. the chip is cut off from
+  //    the workpiece ("loss of stiffness in the chip as it becomes completely damaged").
+  // none: every drop counts (local crushing at the edge of fine meshes fires after a few um).
+  CompletionGuard completion_guard = CompletionGuard::separation;
   Kinematics kinematics = Kinematics::total_lagrangian;
   int update_interval = 20;
   int record_every = 20;         // steps per force record (forces averaged over the window)
@@ -79,6 +85,10 @@ struct CuttingResult {
   double dt_drop_ratio = 1.0;           // dt / running mean at detection
   double travel_path = -1.0;            // first travel at which damage connects edge and surface
   double travel_first_drop = -1.0;      // first time-step drop (guard or not), -1: none
+  double travel_separated = -1.0;       // first travel at which eroded points connect edge and surface
+  // First failure of any Gauss point (any mode): travel and the window-mean F_c of that record
+  // window (N/m). Before it the response is elastic, independent of the degradation scheme.
+  double travel_first_failure = -1.0, Fc_first_failure = 0.0;
   long steps = 0;
   int nodes = 0;
   double hx = 0.0, hy = 0.0, y_edge = 0.0;
@@ -90,6 +100,45 @@ struct CuttingResult {
   // Damage below the cut line (machined surface), within one depth of cut.
   std::size_t sub_gauss = 0, sub_fibre = 0, sub_matrix = 0;
   std::vector<CuttingSnapshot> snapshots;
+};
+
+// Edge-to-surface path search over Gauss points in the reference configuration (the chip-completion
+// guard). Gauss points closer than 0.75 max(hx, hy) are neighbours (the 2 x 2 points of a cell and
+// those of the adjacent cells). A path starts at a failed point just above the cut line y_E
+// (y_E < y < y_E + 1.5 hy) near the reference position of the edge (cut_tip - hx < x < cut_tip +
+// 1.5 hx) and must reach a failed point within hy/2 of the free surface y = top. With ahead_only,
+// only points with x > cut_tip - hx (material ahead of the edge: the chip's root) may be used.
+class EdgeSurfacePath {
+public:
+  EdgeSurfacePath(std::vector<Vec2> gauss, double hx, double hy, double y_edge, double top);
+  bool connected(const std::function<bool(std::size_t)>& failed, double cut_tip, bool ahead_only);
+  std::size_t size() const { return x_.size(); }
+
+private:
+  std::vector<Vec2> x_;
+  double hx_, hy_, yE_, top_;
+  std::vector<int> start_, adj_;  // CSR neighbours
+  std::vector<char> seen_;
+  std::vector<int> queue_;
+};
+
+// Time-step drop detector of section 5.4: fires when dt < (1 - drop) x its running mean over
+// `window` steps (exponential mean), or on a collapse-erosion event, provided the guard holds.
+// first_drop() is the travel of the first drop with or without the guard.
+class DropDetector {
+public:
+  DropDetector(double drop, int window, double dt0) : drop_(drop), window_(std::max(1, window)), mean_(dt0) {}
+  // Returns true when completion is detected at this step (ratio() = dt / running mean then);
+  // drops are looked for only when `armed` (the running mean is always updated).
+  bool update(double dt, bool collapse_event, bool guard, double travel, bool armed = true);
+  double first_drop() const { return first_drop_; }
+  double ratio() const { return ratio_; }
+
+private:
+  double drop_;
+  int window_;
+  double mean_;
+  double first_drop_ = -1.0, ratio_ = 1.0;
 };
 
 // Tool-edge vertices replacing the sharp edge E (counter-clockwise, from the clearance face to

@@ -16,6 +16,7 @@
 #endif
 
 #include "cutbench/common/errors.hpp"
+#include "cutbench/framework/run_cache.hpp"
 #include "cutbench/framework/case.hpp"
 #include "cutbench/framework/runner.hpp"
 #include "cutbench/framework/store.hpp"
@@ -344,6 +345,10 @@ int main(int argc, char** argv) {
   run->add_option("--tier", run_tier, "Tier: quick (CI) or full (paper resolution)");
   run->add_option("--out", run_out, "Results directory");
   run->add_option("-j,--threads", threads, "OpenMP threads");
+  std::string run_cache;
+  run->add_option("--run-cache", run_cache,
+                  "Directory of finished solver runs, keyed by solver, parameters and software version: "
+                  "reuse them and store new ones (resume an interrupted full tier; share runs between cases)");
   run->add_flag("--ctest", ctest_mode, "Exit 77 (skip) when every selected case is NOT IMPLEMENTED");
   run->add_flag("--strict", strict, "Known failures fail the run too");
 
@@ -383,7 +388,10 @@ int main(int argc, char** argv) {
   try {
     register_all();
     if (*list) return cmd_list(list_json, results_dir, list_paper);
-    if (*run) return cmd_run(run_ids, run_paper, run_tier, run_out, ctest_mode, strict);
+    if (*run) {
+      set_run_cache_dir(run_cache);
+      return cmd_run(run_ids, run_paper, run_tier, run_out, ctest_mode, strict);
+    }
     if (*eval) {
       if (eval_list) return cmd_eval_list(eval_json);
       if (eval_model.empty()) throw InputError("model", "give a model name (see `cutbench eval --list`)");

@@ -8,6 +8,7 @@
 #include "cutbench/common/errors.hpp"
 #include "cutbench/framework/case.hpp"
 #include "cutbench/framework/reference.hpp"
+#include "cutbench/framework/run_cache.hpp"
 #include "cutbench/framework/runner.hpp"
 #include "cutbench/framework/store.hpp"
 
@@ -274,4 +275,116 @@ sweep = { param = "x", values = ["1 mm", "2 mm"] }
   BOOST_TEST(y[1] == 4e-3, boost::test_tools::tolerance(1e-14));
   const json j = read_case_json(out, c);
   BOOST_TEST(j["status"].get<std::string>() == "NOT RUN");  // no checks
+}
+
+BOOST_AUTO_TEST_CASE(run_cache_round_trip) {
+  RunOutput run;
+  Table t;
+  t.name = "forces";
+  t.add("t", "s", {0.0, 1e-6, 2e-6});
+  t.add("F_c", "N/m", {1.5, -2.25, 3.125});
+  run.tables.push_back(t);
+  Snapshot snap;
+  snap.time = 4e-6;
+  snap.x = {0.0, 1.0};
+  snap.y = {2.0, 3.0};
+  snap.add("T", "K", {300.0, 1200.5});
+  run.snapshots.push_back(snap);
+  run.set_scalar("F_c", 1.0 / 3.0, "N/m");
+  run.set_scalar("steps", 12345.0, "1");
+  run.notes = {"a note", ""};
+  const Values params{{"h", 1e-3}, {"mu", 0.35}};
+  const std::string key = run_key("toy_solver", params);
+  const fs::path dir = fs::temp_directory_path() / "cutbench_test_runcache";
+  fs::remove_all(dir);
+  const std::string path = (dir / run_file_name("toy_solver", key)).string();
+  save_run(path, key, run);
+  BOOST_TEST(!fs::exists(path + ".tmp"));
+  RunOutput back;
+  BOOST_REQUIRE(load_run(path, key, back));
+  BOOST_TEST(back.tables.size() == 1u);
+  BOOST_TEST(back.tables[0].name == "forces");
+  BOOST_TEST((back.tables[0].order == t.order));
+  BOOST_TEST((back.tables[0].columns == t.columns));
+  BOOST_TEST((back.tables[0].units == t.units));
+  BOOST_REQUIRE(back.snapshots.size() == 1u);
+  BOOST_TEST(back.snapshots[0].time == 4e-6);
+  BOOST_TEST((back.snapshots[0].x == snap.x));
+  BOOST_TEST((back.snapshots[0].fields == snap.fields));
+  BOOST_TEST((back.scalars == run.scalars));  // bit-exact
+  BOOST_TEST((back.scalar_units == run.scalar_units));
+  BOOST_TEST((back.notes == run.notes));
+  // another key (a parameter differs in the last digit) does not load; neither does a cut file
+  Values other = params;
+  other["mu"] = 0.35000000000000003;
+  const std::string key2 = run_key("toy_solver", other);
+  BOOST_TEST(key2 != key);
+  BOOST_TEST(!load_run(path, key2, back));
+  BOOST_TEST(!load_run((dir / "absent.run").string(), key, back));
+  const auto size = fs::file_size(path);
+  fs::resize_file(path, size - 5);
+  BOOST_TEST(!load_run(path, key, back));
+}
+
+BOOST_AUTO_TEST_CASE(run_cache_shares_and_resumes_solver_runs) {
+  static int calls = 0;
+  if (!SolverRegistry::instance().find("toy_counting_solver")) {
+    SolverSpec sv;
+    sv.name = "toy_counting_solver";
+    sv.description = "counts its runs";
+    sv.source = "test";
+    sv.params = {param("a", Dim::dimensionless, "input", 1.0, 0.0, 10.0)};
+    sv.scalars = {{"y", Dim::dimensionless, "2 a"}};
+    sv.run = [](const Values& v, const ProgressFn&) {
+      ++calls;
+      RunOutput r;
+      r.set_scalar("y", 2.0 * v.at("a"), "1");
+      return r;
+    };
+    SolverRegistry::instance().add(sv);
+  }
+  const fs::path dir = fs::temp_directory_path() / "cutbench_test_cases" / "nairn2015";
+  fs::create_directories(dir);
+  const fs::path f = dir / "toy_cache.toml";
+  std::ofstream(f) << R"(id = "nairn2015/toy_cache"
+paper = "nairn2015"
+item = "Test"
+title = "t"
+requirement = "r"
+solver = "mpm"
+models = ["toy_counting_solver"]
+tiers = ["quick"]
+status = "implemented"
+[[series]]
+name = "first"
+model = "toy_counting_solver"
+sweep = { param = "a", values = [1, 2] }
+[[series]]
+name = "same_as_first_point"
+model = "toy_counting_solver"
+params = { a = 1 }
+)";
+  const CaseSpec c = load_case(f, "quick");
+  const fs::path cache = fs::temp_directory_path() / "cutbench_test_runcache2";
+  fs::remove_all(cache);
+  calls = 0;
+  const CaseResult plain = run_case(c, "quick", nullptr);  // cache off: every point runs
+  BOOST_TEST(calls == 3);
+  set_run_cache_dir(cache.string());
+  calls = 0;
+  const CaseResult first = run_case(c, "quick", nullptr);
+  BOOST_TEST(calls == 2);  // the second series reuses the first point
+  const CaseResult again = run_case(c, "quick", nullptr);
+  BOOST_TEST(calls == 2);  // nothing recomputed
+  set_run_cache_dir("");
+  for (const auto* r : {&first, &again}) {
+    BOOST_REQUIRE(r->series.size() == 2u);
+    BOOST_TEST((r->series[0].table.columns.at("y") == plain.series[0].table.columns.at("y")));
+    BOOST_TEST((r->series[1].table.columns.at("y") == plain.series[1].table.columns.at("y")));
+  }
+  // reuse is stated in the notes
+  bool noted = false;
+  for (const auto& n : again.series[0].notes) noted = noted || n.find("run cache") != std::string::npos;
+  BOOST_TEST(noted);
+  fs::remove(f);
 }

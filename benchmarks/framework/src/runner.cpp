@@ -11,6 +11,7 @@
 
 #include "cutbench/analytic/models.hpp"
 #include "cutbench/common/errors.hpp"
+#include "cutbench/framework/run_cache.hpp"
 // Each solver library defines cutbench::<method>::register_solvers(SolverRegistry&).
 #ifdef CUTBENCH_HAVE_MPM
 namespace cutbench::mpm {
@@ -126,7 +127,25 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
       if (progress) progress(a + (b - a) * f, s.name + " point " + std::to_string(k + 1) + "/" +
                                                   std::to_string(points.size()) + ": " + msg);
     };
-    RunOutput run = sv->run(params, inner);
+    RunOutput run;
+    const std::string& cache = run_cache_dir();
+    bool reused = false;
+    std::string cache_path;
+    if (!cache.empty()) {
+      const std::string key = run_key(sv->name, params);
+      cache_path = cache + "/" + run_file_name(sv->name, key);
+      reused = load_run(cache_path, key, run);
+      if (reused) {
+        inner(1.0, "reused from the run cache");
+        run.notes.push_back("point " + std::to_string(k + 1) + " of series '" + s.name +
+                            "' reused from the run cache (" + cache_path + ")");
+      } else {
+        run = sv->run(params, inner);
+        save_run(cache_path, key, run);
+      }
+    } else {
+      run = sv->run(params, inner);
+    }
     for (const auto& o : sv->scalars) {
       auto it = run.scalars.find(o.name);
       scal[o.name].push_back(it == run.scalars.end() ? nan_value() : it->second);

@@ -1,0 +1,29 @@
+#pragma once
+// Opt-in store of finished solver runs (`cutbench run --run-cache DIR`): a solver run is keyed by
+// the solver name, every validated parameter (17 significant digits) and the software version, so
+// that an interrupted full tier resumes where it stopped and cases that need the same run (e.g.
+// one paper's figures drawn from the same simulation) compute it once. The key is stored in the
+// file and compared on load; files are written to a temporary name and renamed. The software
+// version is fixed at configure time, so a cache must not be reused across uncommitted solver
+// changes: it is off unless asked for.
+#include <string>
+
+#include "cutbench/common/model.hpp"
+#include "cutbench/common/solver.hpp"
+
+namespace cutbench::framework {
+
+// Key text and file name (<solver>-<16 hex digits>.run) of one solver run.
+std::string run_key(const std::string& solver, const Values& params);
+std::string run_file_name(const std::string& solver, const std::string& key);
+
+// Binary round trip of a RunOutput (tables, snapshots, scalars with units, notes).
+void save_run(const std::string& path, const std::string& key, const RunOutput& run);
+// False when the file is absent, unreadable, truncated or stored under another key.
+bool load_run(const std::string& path, const std::string& key, RunOutput& run);
+
+// Directory used by run_case (empty: off).
+void set_run_cache_dir(const std::string& dir);
+const std::string& run_cache_dir();
+
+}  // namespace cutbench::framework

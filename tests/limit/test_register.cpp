@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cutbench/common/errors.hpp"
+#include "cutbench/limit/cutting.hpp"
 #include "cutbench/limit/register.hpp"
 
 BOOST_AUTO_TEST_SUITE(limit_registry)
@@ -37,6 +38,37 @@ BOOST_AUTO_TEST_CASE(register_is_idempotent_and_runs) {
   BOOST_TEST(std::abs(on.scalars.at("fc_bar") - os.scalars.at("fc_bar")) < 1e-9);
   BOOST_TEST(std::abs(oc.scalars.at("cutting_force") / (oc.scalars.at("fc_bar") * 6.4e8 * 2e-4 * 3.5e-3) - 1.0) < 1e-12);
   BOOST_TEST(oc.tables.size() == 2u);  // rake_contact, rake_layer
+}
+
+
+BOOST_AUTO_TEST_CASE(steady_state_loop_with_contact_update_and_refinement) {
+  // One runner path for Fig. 4: eta2 loop (steady_state = 2), contact length from the natural
+  // separation at every phi (contact_search = 2), 3 anisotropic refinement steps at every phi.
+  // Frictionless, alpha = 6 deg: the straight chip leaves the contact along the rake face at
+  // phi_M = 48 deg, so phi_M is kept after one configuration and F_c bar is Merchant's 1.8008
+  // (measured 1.818, 348 elements, l = 0.917 t1; README 3.3).
+  cutbench::SolverRegistry reg;
+  cutbench::limit::register_solvers(reg);
+  const auto* cut = reg.find("limit_cutting");
+  BOOST_REQUIRE(cut);
+  const double alpha = 6.0 * M_PI / 180.0;
+  const auto o = cut->run({{"alpha", alpha}, {"n", 6.0}, {"steady_state", 2.0}, {"contact_search", 2.0},
+                           {"adapt_steps", 3.0}, {"refine", 1.0}},
+                          nullptr);
+  const double phi_m = cutbench::limit::merchant_shear_angle(alpha, 0.0);
+  BOOST_TEST(std::abs(o.scalars.at("phi") - phi_m) < 1e-12);
+  BOOST_TEST(std::abs(o.scalars.at("eta2")) < 1e-5);
+  BOOST_TEST(std::abs(o.scalars.at("fc_bar") / cutbench::limit::merchant_force_bar(phi_m, alpha, 0.0) - 1.0) < 0.03);
+  BOOST_TEST(o.scalars.at("solves") == 5.0);  // 1 natural-separation solve + 4 on the refined meshes
+  BOOST_TEST(o.scalars.at("elements") > 300.0);  // refined from the uniform n = 6 mesh (264 elements at l = 0.917 t1)
+  BOOST_TEST(o.scalars.at("l_over_t1") > 0.5);
+  BOOST_TEST(o.scalars.at("l_over_t1") < 1.5);
+  bool hist = false;
+  for (const auto& t : o.tables) hist = hist || t.name == "steady_state";
+  BOOST_TEST(hist);
+  // the refinement with the mode-1 loop or with a search outside the eta2 loop is refused
+  BOOST_CHECK_THROW(cut->run({{"steady_state", 1.0}, {"adapt_steps", 2.0}}, nullptr), cutbench::InputError);
+  BOOST_CHECK_THROW(cut->run({{"contact_search", 2.0}, {"adapt_steps", 2.0}}, nullptr), cutbench::InputError);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

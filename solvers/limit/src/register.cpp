@@ -228,7 +228,7 @@ SolverSpec cutting_spec() {
               param("eta2", Dim::angle, "stream angle of the chip beyond the contact (Fig. 5): the free chip turned by eta2 away from the tool (< 0: toward the tool side, restricted tool only)", 0.0, -0.7, 0.7),
               param("chip_extra", Dim::dimensionless, "length of the chip mesh beyond the contact, in t2", 2.0, 0.5, 10.0),
               p_int("fit_eta2", "1: fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", 0, 0, 1),
-              p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%); fixed geometry only", 0, 0, 10),
+              p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%) from the structured mesh; at a fixed geometry, or at every phi of the steady_state = 2 loop (with contact_search: l(phi) from the uniform mesh, then the refined permanent contact over l)", 0, 0, 10),
               p_int("refine", "kind of the adaptive refinement: 0 isotropic (longest-edge bisection), 1 anisotropic (recovered Hessian of the dissipation density -> metric-directed bisection + edge swaps, stretched along the shear bands)", 0, 0, 1)};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
                {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
@@ -280,25 +280,41 @@ SolverSpec cutting_spec() {
     const bool search = search_mode > 0, loop = loop_mode == 1, tangent = loop_mode == 2;
     if (fit_eta && (search || loop || tangent))
       throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = 0, steady_state = 0)");
-    if (as_int(v, "adapt_steps") > 0 && (search || loop))
-      throw InputError("adapt_steps", "adaptive refinement is only available with contact_search = 0 and steady_state = 0 or 2");
+    const int adapt_steps = as_int(v, "adapt_steps");
+    if (adapt_steps > 0 && (loop || (search && !tangent)))
+      throw InputError("adapt_steps", "adaptive refinement needs steady_state = 0 or 2, and a contact search only together with steady_state = 2");
     if (progress) progress(0.0, "solving");
     const auto t0 = std::chrono::steady_clock::now();
     int solves = 0;
-    std::vector<double> loop_phi, loop_phi_star, loop_fc;
-    auto solve_once = [&](CuttingSetup cs) {
-      if (!search) {
-        const int steps = as_int(v, "adapt_steps");
-        solves += steps + 1;
-        if (steps > 0) {
-          AdaptOptions opt;
-          opt.steps = steps;
-          opt.fraction = 0.5;
-          opt.anisotropic = as_int(v, "refine") == 1;
-          return adapt_cutting(cs, opt);
-        }
-        return solve_cutting(cs);
+    std::vector<double> loop_phi, loop_phi_star, loop_fc, loop_l, loop_el;
+    // one configuration at a fixed geometry: uniform mesh, or `adapt_steps` dissipation-driven
+    // refinements from it (the mesh is rebuilt from scratch for every geometry)
+    auto solve_fixed = [&](const CuttingSetup& cs) {
+      solves += adapt_steps + 1;
+      if (adapt_steps > 0) {
+        AdaptOptions opt;
+        opt.steps = adapt_steps;
+        opt.fraction = 0.5;
+        opt.anisotropic = as_int(v, "refine") == 1;
+        return adapt_cutting(cs, opt);
       }
+      return solve_cutting(cs);
+    };
+    // contact length of the geometry cs (phi set) on the uniform mesh: natural separation (mode 2)
+    // or the sigma_n -> 0 search (mode 1)
+    auto contact_length_of = [&](const CuttingSetup& cs) {
+      if (search_mode == 2) {
+        auto nat = natural_contact_length(cs);
+        ++solves;
+        return nat.contact_length;
+      }
+      auto res = search_contact_length(cs);
+      solves += static_cast<int>(res.lengths.size());
+      if (res.restricted) throw NumericalError("contact_search: sigma_n stays compressive up to l = 5 t1");
+      return res.contact_length;
+    };
+    auto solve_once = [&](CuttingSetup cs) {
+      if (!search) return solve_fixed(cs);
       if (search_mode == 2) {  // the long unilateral-contact solution, profile cut at l_sep
         auto nat = natural_contact_length(cs);
         ++solves;
@@ -317,10 +333,15 @@ SolverSpec cutting_spec() {
     std::vector<double> loop_eta;
     bool tangent_converged = true, tangent_at_merchant = false;
     if (tangent) {  // Fig. 4 with phi* from the chip direction after the contact (eta2 = 0)
-      const double l_given = c.contact_length;
+      // With a contact search the loop updates l at every phi (Fig. 4: phi -> t2 -> l -> FE):
+      // l(phi) from the uniform mesh, then the permanent contact over l(phi) (w_n = 0, paper
+      // sec. 2.2) is solved (and refined) and eta2 measured on it. The unilateral long-contact
+      // solution itself is not used for eta2: its chip turns away after the separation.
       auto res = tangent_loop(c, [&](CuttingSetup cs) {
-        if (search) cs.contact_length = l_given;
-        CuttingResult rr = solve_once(cs);
+        if (search) cs.contact_length = contact_length_of(cs);
+        CuttingResult rr = solve_fixed(cs);
+        loop_l.push_back(cs.contact_length);
+        loop_el.push_back(rr.model.mesh.num_elements());
         return rr;
       });
       loop_phi = res.phi;
@@ -329,12 +350,9 @@ SolverSpec cutting_spec() {
       tangent_converged = res.converged;
       tangent_at_merchant = res.at_merchant;
       c.phi = res.phi_star;
+      for (std::size_t i = 0; i < loop_phi.size(); ++i)
+        if (loop_phi[i] == res.phi_star) c.contact_length = loop_l[i];
       r = std::move(res.final);
-      if (search_mode == 2) {  // l_sep of the final configuration
-        double lsep = 0.0;
-        for (std::size_t i = 0; i < r.s.size(); ++i) lsep = r.s[i];
-        c.contact_length = lsep;
-      }
     } else if (loop) {  // Fig. 4: φ ← min(φ*, φ_M), at most 4 updates, |Δφ| < 0.5°
       const double phi_m = merchant_shear_angle(a, mu);
       for (int it = 0; it < 5; ++it) {
@@ -444,6 +462,8 @@ SolverSpec cutting_spec() {
       hist.add("phi", "rad", loop_phi);
       hist.add("eta2", "rad", loop_eta);
       hist.add("fc_bar", "1", loop_fc);
+      hist.add("l_over_t1", "1", loop_l);
+      hist.add("elements", "1", loop_el);
       out.tables.push_back(std::move(hist));
       if (!tangent_converged) out.notes.push_back("steady-state (eta2) loop: eta2 > 0 down to phi = 10 deg, not converged");
       out.notes.push_back(tangent_at_merchant ? "steady-state (eta2) loop: eta2(phi_M) <= 1e-3 rad, phi_M kept (phi* >= phi_M)"
@@ -485,8 +505,12 @@ SolverSpec cutting_spec() {
     out.tables.push_back(std::move(contact));
     add_snapshot(out, r.model, r.solution, t1, 1.0);
     out.notes.push_back(std::string(loop || tangent ? "steady-state loop (Fig. 4) on phi; " : "fixed shear angle; ") +
-                        (search ? "contact length searched (sigma_n -> 0); " : "contact length imposed; ") +
-                        "structured mesh, no adaptive refinement");
+                        (search ? (search_mode == 2 ? "contact length from the natural separation (uniform mesh); "
+                                                    : "contact length searched (sigma_n -> 0); ")
+                                : "contact length imposed; ") +
+                        (adapt_steps > 0 ? std::to_string(adapt_steps) + (as_int(v, "refine") == 1 ? " anisotropic" : " isotropic") +
+                                               " refinement steps from the structured mesh at every geometry"
+                                         : std::string("structured mesh, no adaptive refinement")));
     out.notes.push_back("free surfaces held as streamlines: mode " + std::to_string(c.streamline) +
                         " (0 none, 1 uncut top, 2 top + chip back, 3 top + chip back beyond l)");
     out.notes.push_back("contact stresses are lumped nodal reactions over tributary lengths (T6 weights 1/6, 4/6, 1/6)");

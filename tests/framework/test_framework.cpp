@@ -188,6 +188,16 @@ units = "mm"
 source = "x < 0 has no solution"
 
 [[checks]]
+key = "ref_row_from_end"
+kind = "verification"
+metric = "absolute"
+value = { series = "line", output = "y", at = { x = "0.3 mm" } }
+reference = { file = "fig03.csv", column = "h", row = -1 }
+tolerance = 1e-9
+units = "mm"
+source = "last row of nairn2015/fig03.csv: h = 0.9 mm"
+
+[[checks]]
 key = "curve"
 kind = "verification"
 metric = "curve_max_norm"
@@ -208,7 +218,26 @@ source = "identity"
   BOOST_TEST(st["range"] == "PASS");
   BOOST_TEST(st["not_applicable"] == "NOT RUN");
   BOOST_TEST(st["curve"] == "PASS");
+  BOOST_TEST(st["ref_row_from_end"] == "PASS");  // negative rows count from the end
   BOOST_TEST(r.status == "FAIL");  // abs_fail is not a known failure
+  const fs::path bad = write_case("toy_bad_row", R"(status = "implemented"
+[[series]]
+name = "line"
+model = "toy_linear"
+params = { x = "1 mm" }
+[[checks]]
+key = "row_out_of_range"
+kind = "verification"
+metric = "absolute"
+value = { series = "line", output = "y" }
+reference = { file = "fig03.csv", column = "h", row = -9 }
+tolerance = 1e-9
+units = "mm"
+source = "test"
+)");
+  const CaseSpec cb = load_case(bad, "quick");
+  BOOST_CHECK_EXCEPTION(run_case(cb, "quick", nullptr), InputError,
+                        [](const InputError& e) { return e.field().find(".row") != std::string::npos; });
 }
 
 BOOST_AUTO_TEST_CASE(bad_case_files_name_the_field) {
@@ -299,7 +328,7 @@ BOOST_AUTO_TEST_CASE(run_cache_round_trip) {
   fs::remove_all(dir);
   const std::string path = (dir / run_file_name("toy_solver", key)).string();
   save_run(path, key, run);
-  BOOST_TEST(!fs::exists(path + ".tmp"));
+  for (const auto& e : fs::directory_iterator(dir)) BOOST_TEST(e.path().extension() != ".tmp");  // renamed
   RunOutput back;
   BOOST_REQUIRE(load_run(path, key, back));
   BOOST_TEST(back.tables.size() == 1u);
@@ -367,6 +396,15 @@ params = { a = 1 }
   const CaseSpec c = load_case(f, "quick");
   const fs::path cache = fs::temp_directory_path() / "cutbench_test_runcache2";
   fs::remove_all(cache);
+  struct Reset {
+    ~Reset() { set_run_cache_dir(""); }
+  } reset;  // the cache is global: switch it off even if a check throws
+  // a directory that cannot be created is an input error naming the option
+  const fs::path blocker = fs::temp_directory_path() / "cutbench_test_runcache_file";
+  std::ofstream(blocker) << "x";
+  BOOST_CHECK_EXCEPTION(set_run_cache_dir((blocker / "sub").string()), InputError,
+                        [](const InputError& e) { return e.field() == "--run-cache"; });
+  fs::remove(blocker);
   calls = 0;
   const CaseResult plain = run_case(c, "quick", nullptr);  // cache off: every point runs
   BOOST_TEST(calls == 3);

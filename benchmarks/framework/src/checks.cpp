@@ -270,7 +270,13 @@ double reference_value(const CaseSpec& spec, const std::vector<SeriesResult>& se
       }
       row = rows[0];
     } else if (ref.contains("row")) {
-      row = ref["row"].get<std::size_t>();
+      auto r = ref["row"].get<long>();  // negative counts from the end, as in series selectors
+      if (r < 0) r += static_cast<long>(t.rows);
+      if (r < 0 || static_cast<std::size_t>(r) >= t.rows) {
+        throw InputError(field + ".row", "in -" + std::to_string(t.rows) + ".." + std::to_string(t.rows) + " - 1 (" +
+                                             t.path.filename().string() + " has " + std::to_string(t.rows) + " rows)");
+      }
+      row = static_cast<std::size_t>(r);
     } else if (t.rows != 1) {
       throw InputError(field, "give where or row: " + t.path.filename().string() + " has several rows");
     }

@@ -6,7 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
 
+#include <unistd.h>
+
+#include "cutbench/common/errors.hpp"
 #include "cutbench/framework/results.hpp"
 
 namespace cutbench::framework {
@@ -119,8 +123,34 @@ private:
 
 }  // namespace
 
+// Identity of the running build: a hash of the executable's bytes, so that any rebuild with
+// changed code (committed or not) gives new keys; empty when the executable cannot be read.
+const std::string& build_identity() {
+  static const std::string id = [] {
+    std::ifstream exe("/proc/self/exe", std::ios::binary);
+    if (!exe) return std::string();
+    std::uint64_t h = 1469598103934665603ull;
+    std::vector<char> buf(1 << 16);
+    std::uint64_t n = 0;
+    while (exe) {
+      exe.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+      const auto got = exe.gcount();
+      for (std::streamsize k = 0; k < got; ++k) {
+        h ^= static_cast<unsigned char>(buf[static_cast<std::size_t>(k)]);
+        h *= 1099511628211ull;
+      }
+      n += static_cast<std::uint64_t>(got);
+    }
+    if (n == 0) return std::string();
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return std::string(hex);
+  }();
+  return id;
+}
+
 std::string run_key(const std::string& solver, const Values& params) {
-  std::string key = solver + "|" + software_version();
+  std::string key = solver + "|" + software_version() + "|build " + build_identity();
   char buf[64];
   for (const auto& [name, value] : params) {
     std::snprintf(buf, sizeof buf, "%.17g", value);
@@ -139,7 +169,8 @@ void save_run(const std::string& path, const std::string& key, const RunOutput& 
   namespace fs = std::filesystem;
   const fs::path target(path);
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
-  const std::string tmp = path + ".tmp";
+  static std::uint64_t counter = 0;
+  const std::string tmp = path + "." + std::to_string(::getpid()) + "." + std::to_string(++counter) + ".tmp";
   {
     std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
     if (!o) throw std::runtime_error("cannot write run cache file " + tmp);
@@ -177,7 +208,12 @@ void save_run(const std::string& path, const std::string& key, const RunOutput& 
     w.strings(run.notes);
     if (!o) throw std::runtime_error("cannot write run cache file " + tmp);
   }
-  fs::rename(tmp, target);
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot store run cache file " + path);
+  }
 }
 
 bool load_run(const std::string& path, const std::string& key, RunOutput& run) {
@@ -225,7 +261,19 @@ bool load_run(const std::string& path, const std::string& key, RunOutput& run) {
   }
 }
 
-void set_run_cache_dir(const std::string& dir) { g_cache_dir = dir; }
+void set_run_cache_dir(const std::string& dir) {
+  namespace fs = std::filesystem;
+  if (!dir.empty()) {
+    if (build_identity().empty())
+      throw InputError("--run-cache", "the running executable cannot be read (/proc/self/exe), so runs cannot be keyed to this build");
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    const fs::path probe = fs::path(dir) / (".write-test." + std::to_string(::getpid()));
+    { std::ofstream o(probe); if (!o || ec) throw InputError("--run-cache", "a writable directory (cannot create or write '" + dir + "')"); }
+    fs::remove(probe, ec);
+  }
+  g_cache_dir = dir;
+}
 const std::string& run_cache_dir() { return g_cache_dir; }
 
 }  // namespace cutbench::framework

@@ -141,7 +141,11 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
                             "' reused from the run cache (" + cache_path + ")");
       } else {
         run = sv->run(params, inner);
-        save_run(cache_path, key, run);
+        try {
+          save_run(cache_path, key, run);
+        } catch (const std::exception& e) {  // the finished run is kept; only its storage failed
+          run.notes.push_back(std::string("run cache: not stored (") + e.what() + ")");
+        }
       }
     } else {
       run = sv->run(params, inner);

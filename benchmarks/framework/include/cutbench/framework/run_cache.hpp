@@ -1,11 +1,11 @@
 #pragma once
 // Opt-in store of finished solver runs (`cutbench run --run-cache DIR`): a solver run is keyed by
-// the solver name, every validated parameter (17 significant digits) and the software version, so
-// that an interrupted full tier resumes where it stopped and cases that need the same run (e.g.
-// one paper's figures drawn from the same simulation) compute it once. The key is stored in the
-// file and compared on load; files are written to a temporary name and renamed. The software
-// version is fixed at configure time, so a cache must not be reused across uncommitted solver
-// changes: it is off unless asked for.
+// the solver name, every validated parameter (17 significant digits), the software version and a
+// hash of the running executable (so any rebuild with changed code, committed or not, gives new
+// keys), so that an interrupted full tier resumes where it stopped and cases that need the same run
+// (e.g. one paper's figures drawn from the same simulation) compute it once. The key is stored in
+// the file and compared on load (a hash collision only costs a recompute); files are written to a
+// per-process temporary name and renamed.
 #include <string>
 
 #include "cutbench/common/model.hpp"
@@ -22,7 +22,8 @@ void save_run(const std::string& path, const std::string& key, const RunOutput& 
 // False when the file is absent, unreadable, truncated or stored under another key.
 bool load_run(const std::string& path, const std::string& key, RunOutput& run);
 
-// Directory used by run_case (empty: off).
+// Directory used by run_case (empty: off). Throws InputError("--run-cache", ...) when the
+// directory cannot be created or written, or the executable cannot be read for its identity.
 void set_run_cache_dir(const std::string& dir);
 const std::string& run_cache_dir();
 

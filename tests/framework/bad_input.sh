@@ -20,6 +20,13 @@ expect_eval() {  # model evaluation with bad parameters
   elif [[ "$msg" != *"$field"* ]]; then echo "FAIL $what: message does not name '$field': $msg"; fail=1;
   else echo "ok   $what: $msg"; fi
 }
+expect_cmd() {  # any other subcommand: exit 2 and a message naming the field
+  local what="$1" field="$2"; shift 2
+  local msg; msg=$("$cutbench" "$@" 2>&1 >/dev/null); local rc=$?
+  if [[ $rc -ne 2 ]]; then echo "FAIL $what: exit $rc (expected 2): $msg"; fail=1;
+  elif [[ "$msg" != *"$field"* ]]; then echo "FAIL $what: message does not name '$field': $msg"; fail=1;
+  else echo "ok   $what: $msg"; fi
+}
 bad="$root/tests/data/bad_cases"
 expect "unknown key"          "colour"           run "$bad/nairn2015/unknown_key.toml"
 expect "wrong unit"           "params.h"         run "$bad/nairn2015/wrong_unit.toml"
@@ -33,4 +40,6 @@ expect_eval "eval unknown param"  "colour"  atkins_touching colour=3
 expect_eval "eval rake 90"        "rake"    atkins_touching G_c=2000 sigma_y=25MPa h=1mm rake=90deg
 expect_eval "eval negative mu"    "mu"      atkins_touching G_c=2000 sigma_y=25MPa h=1mm rake=30deg mu=-0.1
 expect_eval "eval wrong unit"     "h: wrong unit" atkins_touching G_c=2000 sigma_y=25MPa h=1MPa rake=30deg
+expect "run cache not writable"  "--run-cache"  run afrasiabi2021/fig03 --run-cache /proc/cutbench-no-such-dir
+expect_cmd "option not a whole number" "completion_guard" bench efg_cutting completion_guard=1.4
 exit $fail

@@ -254,4 +254,54 @@ BOOST_AUTO_TEST_CASE(turned_free_chip_mass_balance) {
   BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
 }
 
+// The loop's control flow with a stub solve (no mechanics): eta2 = phi - phi0, so phi* = phi0 to
+// within tol_phi below it; no sign change above phi_min gives the smallest angle tried, not
+// converged; a phi_min above phi_M - step keeps the phi_M solve as the result.
+BOOST_AUTO_TEST_CASE(tangent_loop_bracket_bisection_and_no_bracket) {
+  const double deg = 3.14159265358979323846 / 180.0;
+  CuttingSetup c;
+  c.alpha = 0.0;
+  c.mu = 0.5;
+  const double phi_m = merchant_shear_angle(c.alpha, c.mu);  // 31.72 deg
+  int calls = 0;
+  auto stub = [&](double phi0) {
+    return [&calls, phi0](const CuttingSetup& cs) {
+      ++calls;
+      CuttingResult r;
+      r.chip_exit_angle = cs.phi - phi0;
+      r.fc_bar = 1.0 + cs.phi;  // marks which solve was kept
+      return r;
+    };
+  };
+  TangentLoopOptions opt;
+  auto res = tangent_loop(c, stub(26.6 * deg), opt);
+  BOOST_TEST(res.converged);
+  BOOST_TEST(!res.at_merchant);
+  BOOST_TEST(res.phi_star <= 26.6 * deg + 1e-12);
+  BOOST_TEST(res.phi_star > 26.6 * deg - opt.tol_phi);
+  BOOST_TEST(res.final.fc_bar == 1.0 + res.phi_star);
+  BOOST_TEST(res.phi.size() == static_cast<std::size_t>(calls));
+  // phi0 above phi_M: phi_M kept after one solve
+  calls = 0;
+  res = tangent_loop(c, stub(40.0 * deg), opt);
+  BOOST_TEST(res.at_merchant);
+  BOOST_TEST(calls == 1);
+  BOOST_TEST(res.phi_star == phi_m);
+  // no sign change above phi_min: smallest angle tried, not converged, a real result kept
+  res = tangent_loop(c, stub(5.0 * deg), opt);
+  BOOST_TEST(!res.converged);
+  BOOST_TEST(res.phi_star >= opt.phi_min);
+  BOOST_TEST(res.phi_star < opt.phi_min + opt.step);
+  BOOST_TEST(res.final.fc_bar == 1.0 + res.phi_star);
+  // phi_min too close to phi_M for one step down: the phi_M solve is the result
+  opt.phi_min = phi_m - 1.0 * deg;
+  res = tangent_loop(c, stub(5.0 * deg), opt);
+  BOOST_TEST(!res.converged);
+  BOOST_TEST(res.phi_star == phi_m);
+  BOOST_TEST(res.final.fc_bar == 1.0 + phi_m);
+  // a Merchant angle outside (phi_min, 90 deg) is an input error
+  opt.phi_min = 40.0 * deg;
+  BOOST_CHECK_THROW(tangent_loop(c, stub(5.0 * deg), opt), cutbench::InputError);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

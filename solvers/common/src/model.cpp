@@ -1,6 +1,7 @@
 #include "cutbench/common/model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "cutbench/common/errors.hpp"
@@ -36,6 +37,15 @@ ParamSpec& non_negative(ParamSpec& p) {
   p.min = 0.0;
   p.min_inclusive = true;
   return p;
+}
+
+int whole_number(const Values& v, const std::string& name) {
+  const auto it = v.find(name);
+  if (it == v.end()) throw InputError(name, "missing");
+  const double x = it->second;
+  if (!(std::abs(x - std::round(x)) <= 1e-9 * std::max(1.0, std::abs(x))) || std::abs(x) > 2.0e9)
+    throw InputError(name, "a whole number (got " + std::to_string(x) + ")");
+  return static_cast<int>(std::lround(x));
 }
 
 std::string describe_range(const ParamSpec& p) {

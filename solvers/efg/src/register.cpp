@@ -246,7 +246,7 @@ void register_solvers(SolverRegistry& registry) {
     s.lamina.E1 = s.material.E1;
     s.lamina.G12 = s.material.G12;
     s.lamina.nu12 = s.material.nu12;
-    s.criterion = static_cast<analytic::Criterion>(static_cast<int>(std::lround(v.at("criterion"))));
+    s.criterion = static_cast<analytic::Criterion>(whole_number(v, "criterion"));
     s.theta = v.at("theta");
     s.depth = v.at("depth");
     s.rake = v.at("rake");
@@ -263,16 +263,16 @@ void register_solvers(SolverRegistry& registry) {
     s.clearance = v.at("clearance");
     s.residual = v.at("residual");
     s.edge_radius = v.at("edge_radius");
-    s.degradation = static_cast<Degradation>(static_cast<int>(std::lround(v.at("degradation"))));
-    s.erosion = static_cast<Erosion>(static_cast<int>(std::lround(v.at("erosion"))));
+    s.degradation = static_cast<Degradation>(whole_number(v, "degradation"));
+    s.erosion = static_cast<Erosion>(whole_number(v, "erosion"));
     s.visibility = v.at("visibility") > 0.5;
     s.collapse_ratio = v.at("collapse_ratio");
     s.drop = v.at("drop");
-    s.drop_window = static_cast<int>(std::lround(v.at("drop_window")));
+    s.drop_window = whole_number(v, "drop_window");
     s.min_travel = v.at("min_travel");
-    s.completion_guard = static_cast<CompletionGuard>(static_cast<int>(std::lround(v.at("completion_guard"))));
+    s.completion_guard = static_cast<CompletionGuard>(whole_number(v, "completion_guard"));
     s.cfl = v.at("cfl");
-    s.snapshots = static_cast<int>(std::lround(v.at("snapshots")));
+    s.snapshots = whole_number(v, "snapshots");
     const auto t0 = std::chrono::steady_clock::now();
     const CuttingResult r = run_cutting(s, [&](double f) {
       if (progress) progress(f, "simulated " + std::to_string(f * 100.0) + " %");

@@ -300,33 +300,27 @@ SolverSpec cutting_spec() {
       }
       return solve_cutting(cs);
     };
-    // contact length of the geometry cs (phi set) on the uniform mesh: natural separation (mode 2)
-    // or the sigma_n -> 0 search (mode 1)
-    auto contact_length_of = [&](const CuttingSetup& cs) {
+    // contact length of the geometry cs (phi set) on the uniform mesh and the solution there:
+    // natural separation (mode 2: the long unilateral-contact solution, profile cut at l_sep) or
+    // the sigma_n -> 0 search (mode 1)
+    auto search_on = [&](const CuttingSetup& cs) -> std::pair<double, CuttingResult> {
       if (search_mode == 2) {
         auto nat = natural_contact_length(cs);
         ++solves;
-        return nat.contact_length;
+        truncate_contact(nat.long_contact, nat.contact_length);
+        return {nat.contact_length, std::move(nat.long_contact)};
       }
       auto res = search_contact_length(cs);
       solves += static_cast<int>(res.lengths.size());
       if (res.restricted) throw NumericalError("contact_search: sigma_n stays compressive up to l = 5 t1");
-      return res.contact_length;
+      return {res.contact_length, std::move(res.final)};
     };
+    auto contact_length_of = [&](const CuttingSetup& cs) { return search_on(cs).first; };
     auto solve_once = [&](CuttingSetup cs) {
       if (!search) return solve_fixed(cs);
-      if (search_mode == 2) {  // the long unilateral-contact solution, profile cut at l_sep
-        auto nat = natural_contact_length(cs);
-        ++solves;
-        c.contact_length = nat.contact_length;
-        truncate_contact(nat.long_contact, nat.contact_length);
-        return std::move(nat.long_contact);
-      }
-      auto res = search_contact_length(cs);
-      solves += static_cast<int>(res.lengths.size());
-      c.contact_length = res.contact_length;
-      if (res.restricted) throw NumericalError("contact_search: sigma_n stays compressive up to l = 5 t1");
-      return std::move(res.final);
+      auto found = search_on(cs);
+      c.contact_length = found.first;
+      return std::move(found.second);
     };
     CuttingResult r;
     std::vector<std::string> out_notes_pending;

@@ -58,6 +58,9 @@ ParamSpec param(std::string name, Dim dim, std::string description, std::optiona
                 double min, double max, bool min_inclusive = true, bool max_inclusive = true);
 ParamSpec& positive(ParamSpec& p);
 ParamSpec& non_negative(ParamSpec& p);
+// A parameter that selects an option or counts something: its value must be a whole number
+// (InputError naming the parameter otherwise, e.g. criterion = 1.4).
+int whole_number(const Values& v, const std::string& name);
 
 // Check names, fill defaults, check ranges. Throws InputError naming the field and the range.
 Values validate_params(const ModelSpec& spec, const Values& given);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <vector>
 
+#include "cutbench/common/errors.hpp"
 #include "cutbench/limit/limit_analysis.hpp"
 
 namespace cutbench::limit {
@@ -222,6 +223,8 @@ TangentLoopResult tangent_loop(CuttingSetup c, SolveFn&& solve, const TangentLoo
     return r;
   };
   double hi = merchant_shear_angle(c.alpha, c.mu);
+  if (!(hi > opt.phi_min && hi < 1.5707963267948966))
+    throw cutbench::InputError("alpha, mu", "Merchant's angle pi/4 + alpha/2 - atan(mu)/2 must lie between the loop's phi_min and 90 deg");
   CuttingResult r = eval(hi);
   if (r.chip_exit_angle <= opt.tol_eta) {
     out.phi_star = hi;
@@ -230,7 +233,7 @@ TangentLoopResult tangent_loop(CuttingSetup c, SolveFn&& solve, const TangentLoo
     return out;
   }
   double lo = hi;
-  CuttingResult r_lo;
+  CuttingResult r_lo = r;  // the phi_M solve, kept if no smaller angle fits above phi_min
   bool bracket = false;
   while (lo - opt.step >= opt.phi_min) {
     lo -= opt.step;

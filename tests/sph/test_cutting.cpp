@@ -41,6 +41,15 @@ BOOST_AUTO_TEST_CASE(coarse_cut_smoke) {
   BOOST_TEST(r.snapshots[0].time < r.snapshots[1].time);
   BOOST_TEST(r.snapshots[2].time == r.snapshot.time);
   BOOST_TEST(r.tool_snapshot.fields.at("T").size() == r.tool_snapshot.x.size());
+  // the split by tool face adds up to the total force, and the rake face uses at most mu
+  const Vec2 parts = r.force_rake + r.force_edge + r.force_flank;
+  BOOST_TEST(parts.x() == r.fc_mean, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(parts.y() == r.ft_mean, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(r.force_rake.x() > 0.5 * r.fc_mean);  // rake 0: the chip pushes mostly on the rake face
+  BOOST_TEST(r.rake_friction_ratio > 0.0);
+  BOOST_TEST(r.rake_friction_ratio <= c.friction * (1.0 + 1e-9));
+  BOOST_TEST(r.rake_slip_fraction >= 0.0);
+  BOOST_TEST(r.rake_slip_fraction <= 1.0);
 }
 
 // Heat audit of a coarse cut: plastic + friction heat = heat stored in workpiece and tool + lost to

@@ -193,6 +193,10 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
     snap.add("surface", "1", surf);
     return snap;
   };
+  // contact normals of the rake and clearance faces (out of the tool, see cutting_tool)
+  const Vec2 n_rake(-std::cos(c.rake), std::sin(c.rake)), n_flank(std::sin(c.clearance), -std::cos(c.clearance));
+  Vec2 zone_force[3] = {Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};  // rake, edge, flank (x dt)
+  double rake_ft = 0.0, rake_fn = 0.0, rake_slip = 0.0, rake_count = 0.0;
   const int n_snap = std::max(1, c.snapshots);
   int snap_taken = 0;
   while (s.time() < t_end) {
@@ -208,6 +212,16 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
       steady_fc += fc * dt;
       steady_ft += ft * dt;
       steady_t += dt;
+      for (const auto& k : s.contacts()) {
+        const int zone = k.normal.dot(n_rake) > 0.9999 ? 0 : (k.normal.dot(n_flank) > 0.9999 ? 2 : 1);
+        zone_force[zone] -= (k.fn + k.ft) * dt;
+        if (zone == 0) {
+          rake_fn += k.fn.norm();
+          rake_ft += k.ft.norm();
+          rake_count += 1.0;
+          if (k.ft.norm() >= 0.999 * k.limit) rake_slip += 1.0;
+        }
+      }
     }
     if (snap_taken < n_snap - 1 && s.time() >= t_end * static_cast<double>(snap_taken + 1) / n_snap) {
       r.snapshots.push_back(take_snapshot());
@@ -228,6 +242,13 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   r.steps = s.steps();
   r.fc_mean = steady_t > 0.0 ? steady_fc / steady_t : nan_value();
   r.ft_mean = steady_t > 0.0 ? steady_ft / steady_t : nan_value();
+  if (steady_t > 0.0) {
+    r.force_rake = zone_force[0] / steady_t;
+    r.force_edge = zone_force[1] / steady_t;
+    r.force_flank = zone_force[2] / steady_t;
+  }
+  r.rake_friction_ratio = rake_fn > 0.0 ? rake_ft / rake_fn : nan_value();
+  r.rake_slip_fraction = rake_count > 0.0 ? rake_slip / rake_count : nan_value();
   // Rake-face temperature: free particles within 1.5 dx of the tool whose contact normal points
   // against the cut (the rake face), above the edge.
   double tsum = 0.0;
@@ -330,6 +351,14 @@ SolverSpec detail::cutting_spec() {
   };
   s.scalars = {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
                {"F_t", Dim::force_per_width, "mean thrust force per unit width (steady part)"},
+               {"F_c_rake", Dim::force_per_width, "part of F_c from contacts on the rake face"},
+               {"F_t_rake", Dim::force_per_width, "part of F_t from contacts on the rake face"},
+               {"F_c_edge", Dim::force_per_width, "part of F_c from contacts on the rounded edge"},
+               {"F_t_edge", Dim::force_per_width, "part of F_t from contacts on the rounded edge"},
+               {"F_c_flank", Dim::force_per_width, "part of F_c from contacts on the clearance face"},
+               {"F_t_flank", Dim::force_per_width, "part of F_t from contacts on the clearance face"},
+               {"rake_friction_ratio", Dim::dimensionless, "sum |f_t| / sum |f_n| over rake-face contacts (steady part)"},
+               {"rake_slip_fraction", Dim::dimensionless, "share of rake-face contacts at the Coulomb limit (steady part)"},
                {"rake_temperature", Dim::temperature, "mean temperature of particles on the rake face at the end"},
                {"T_max", Dim::temperature, "maximum temperature at the end"},
                {"tool_rake_temperature", Dim::temperature, "mean temperature of tool particles on the rake face (up to 2 t_u)"},
@@ -409,13 +438,19 @@ SolverSpec detail::cutting_spec() {
                    {"T_max_x", r.T_max_at.x()}, {"T_max_y", r.T_max_at.y()},
                    {"chip_thickness", r.chip_thickness}, {"chip_T_mean", r.chip_T_mean}, {"chip_ratio", r.chip_thickness / c.uncut_thickness},
                    {"chip_curl", r.chip_curl * 3.14159265358979323846 / 180.0}, {"chip_segments", r.chip_segments},
-                   {"serration_pitch", r.serration_pitch}, {"serration_cv", r.serration_cv}};
+                   {"serration_pitch", r.serration_pitch}, {"serration_cv", r.serration_cv},
+                   {"F_c_rake", r.force_rake.x()}, {"F_t_rake", r.force_rake.y()},
+                   {"F_c_edge", r.force_edge.x()}, {"F_t_edge", r.force_edge.y()},
+                   {"F_c_flank", r.force_flank.x()}, {"F_t_flank", r.force_flank.y()},
+                   {"rake_friction_ratio", r.rake_friction_ratio}, {"rake_slip_fraction", r.rake_slip_fraction}};
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"T_max", "K"},
                         {"chip_height", "m"}, {"steps", "1"}, {"particles", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
                         {"heat_generated", "J/m"}, {"heat_imbalance", "1"}, {"friction_heat", "J/m"}, {"heat_lost_fraction", "1"},
                         {"friction_heat_tool_share", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
                         {"chip_thickness", "m"}, {"chip_T_mean", "K"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},
-                        {"serration_pitch", "m"}, {"serration_cv", "1"}};
+                        {"serration_pitch", "m"}, {"serration_cv", "1"},
+                        {"F_c_rake", "N/m"}, {"F_t_rake", "N/m"}, {"F_c_edge", "N/m"}, {"F_t_edge", "N/m"},
+                        {"F_c_flank", "N/m"}, {"F_t_flank", "N/m"}, {"rake_friction_ratio", "1"}, {"rake_slip_fraction", "1"}};
     out.notes.push_back("Snapshots: the workpiece states in time order, then (if the tool conducts) the "
                         "final tool particles with their temperature.");
     out.notes.push_back("Tool is rigid; its particles conduct heat (k 88 W/mK, c_p 292 J/kgK, density "

@@ -555,6 +555,7 @@ void SolidSph::apply_contact(double dt) {
   tool_pos_ += dt * tool_vel_;
   const double offset = contact_.offset_fraction * dx_;
   Vec2 force = Vec2::Zero();
+  contacts_.clear();
   for (std::size_t i = 0; i < x_.size(); ++i) {
     if (fixed_[i]) continue;
     const SignedDistance sd = tool_->at(x_[i] - tool_pos_);
@@ -572,6 +573,7 @@ void SolidSph::apply_contact(double dt) {
     const Vec2 impulse = jn * sd.normal + jt;
     v_[i] += impulse / m_[i];
     force -= impulse / dt;
+    contacts_.push_back({i, sd.normal, (jn / dt) * sd.normal, jt / dt, limit / dt});
     const Vec2 vrel_after = v_[i] - tool_vel_;
     const double slip = (vrel_after - vrel_after.dot(sd.normal) * sd.normal).norm();
     const double heat = contact_.heat_fraction * jt.norm() * slip;  // J/m over this step
@@ -586,6 +588,7 @@ void SolidSph::penalty_contact(double dt) {
   const double offset = contact_.offset_fraction * dx_;
   if (friction_history_.size() != x_.size()) friction_history_.assign(x_.size(), Vec2::Zero());
   Vec2 force = Vec2::Zero();
+  contacts_.clear();
   if (contact_gap_.size() != x_.size()) {
     contact_gap_.assign(x_.size(), 0.0);
     contact_p_.assign(x_.size(), Vec2::Zero());
@@ -622,6 +625,7 @@ void SolidSph::penalty_contact(double dt) {
     friction_history_[i] = ft;
     a_[i] += (fn + ft) / m_[i];
     force -= fn + ft;
+    contacts_.push_back({i, sd.normal, fn, ft, fy});
     deposit_friction_heat(i, heat);
   }
   tool_force_ = force;

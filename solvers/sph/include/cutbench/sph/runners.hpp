@@ -80,6 +80,11 @@ struct CuttingResult {
   std::vector<double> chip_x0, chip_eps, chip_cx, chip_cy, chip_s;
   double chip_thickness = 0.0, chip_length = 0.0, chip_curl = 0.0, chip_T_mean = 0.0;
   double chip_segments = 0.0, serration_pitch = 0.0, serration_cv = 0.0;
+  // Steady-part mean force on the tool split by the tool face of each contact normal (rake face,
+  // rounded edge, clearance face), N/m; on the rake face: sum |f_t| / sum |f_n| (the friction
+  // ratio the chip actually uses) and the share of contacts at the Coulomb limit (sliding).
+  Vec2 force_rake = Vec2::Zero(), force_edge = Vec2::Zero(), force_flank = Vec2::Zero();
+  double rake_friction_ratio = 0.0, rake_slip_fraction = 0.0;
   double dx = 0.0;
   std::size_t particles = 0, steps = 0;
   Snapshot snapshot;               // final state: T, eps_p, surface flag

@@ -95,6 +95,16 @@ public:
                 ContactOptions contact);
   const Vec2& tool_position() const { return tool_pos_; }
   const Vec2& tool_force() const { return tool_force_; }  // on the tool, N per metre of depth, last step
+  // Contacts of the last step (diagnostics: force split by tool face, friction use). Forces act on
+  // the particle (N/m); `limit` is the Coulomb bound mu |f_n| in force (the velocity model's
+  // impulses are divided by dt).
+  struct ContactRecord {
+    std::size_t particle = 0;
+    Vec2 normal = Vec2::Zero();  // out of the tool
+    Vec2 fn = Vec2::Zero(), ft = Vec2::Zero();
+    double limit = 0.0;
+  };
+  const std::vector<ContactRecord>& contacts() const { return contacts_; }
   double friction_heat() const { return friction_heat_; }  // J per metre of depth, accumulated
   // friction heat put into the tool (share beta, see ContactOptions::tool_heat_share), J/m
   double friction_heat_to_tool() const { return friction_heat_tool_; }
@@ -213,6 +223,7 @@ private:
   void apply_contact(double dt);
   void penalty_contact(double dt);  // adds to a_ at the current positions (tool at time_ + dt)
   std::vector<Vec2> friction_history_;
+  std::vector<ContactRecord> contacts_;  // reused every step (capacity kept)
   double last_dt_ = 0.0;
 
   void thermal_update(double dt, const std::vector<double>& plastic_dT);

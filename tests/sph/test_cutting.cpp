@@ -50,6 +50,10 @@ BOOST_AUTO_TEST_CASE(coarse_cut_smoke) {
   BOOST_TEST(r.rake_friction_ratio <= c.friction * (1.0 + 1e-9));
   BOOST_TEST(r.rake_slip_fraction >= 0.0);
   BOOST_TEST(r.rake_slip_fraction <= 1.0);
+  // the time-averaged rake-face sample lies between ambient and the hottest particle
+  BOOST_TEST(std::isfinite(r.rake_temperature_avg));
+  BOOST_TEST(r.rake_temperature_avg > 293.0);
+  BOOST_TEST(r.rake_temperature_avg < r.T_max);
 }
 
 // Heat audit of a coarse cut: plastic + friction heat = heat stored in workpiece and tool + lost to

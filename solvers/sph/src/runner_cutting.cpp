@@ -197,6 +197,25 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   const Vec2 n_rake(-std::cos(c.rake), std::sin(c.rake)), n_flank(std::sin(c.clearance), -std::cos(c.clearance));
   Vec2 zone_force[3] = {Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};  // rake, edge, flank (x dt)
   double rake_ft = 0.0, rake_fn = 0.0, rake_slip = 0.0, rake_count = 0.0;
+  // Rake-face temperature: free particles within 1.5 dx of the tool whose contact normal points
+  // against the cut (the rake face), above the edge (mean; NaN when none).
+  const auto tool = cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height);
+  auto rake_face_temperature = [&]() {
+    double tsum = 0.0;
+    std::size_t tn = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (fixed[i]) continue;
+      const Vec2& p = s.positions()[i];
+      const auto sd = tool->at(p - s.tool_position());
+      if (sd.distance < 1.5 * dx && sd.normal.x() < -0.7 && p.y() > s.tool_position().y() + c.edge_radius) {
+        tsum += s.temperature()[i];
+        ++tn;
+      }
+    }
+    return tn ? tsum / static_cast<double>(tn) : nan_value();
+  };
+  double rake_avg_sum = 0.0;
+  int rake_avg_n = 0;
   const int n_snap = std::max(1, c.snapshots);
   int snap_taken = 0;
   while (s.time() < t_end) {
@@ -234,6 +253,13 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
       r.ft.push_back(acc_ft / acc_t);
       acc_fc = acc_ft = acc_t = 0.0;
       t_next += window;
+      if (s.time() >= t_steady) {  // time average of the rake-face sample over the steady part
+        const double tr = rake_face_temperature();
+        if (std::isfinite(tr)) {
+          rake_avg_sum += tr;
+          ++rake_avg_n;
+        }
+      }
       if (progress)
         progress(s.time() / t_end, "cut " + std::to_string(s.time() * c.speed * 1e3) + " mm, step " +
                                        std::to_string(s.steps()));
@@ -249,13 +275,8 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   }
   r.rake_friction_ratio = rake_fn > 0.0 ? rake_ft / rake_fn : nan_value();
   r.rake_slip_fraction = rake_count > 0.0 ? rake_slip / rake_count : nan_value();
-  // Rake-face temperature: free particles within 1.5 dx of the tool whose contact normal points
-  // against the cut (the rake face), above the edge.
-  double tsum = 0.0;
-  std::size_t tn = 0;
   r.T_max = 0.0;
   double chip_top = 0.0;
-  const auto tool = cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height);
   for (std::size_t i = 0; i < x.size(); ++i) {
     const Vec2& p = s.positions()[i];
     if (s.temperature()[i] > r.T_max) {
@@ -263,16 +284,11 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
       r.T_max_at = p - s.tool_position();
     }
     chip_top = std::max(chip_top, p.y());
-    if (fixed[i]) continue;
-    const auto sd = tool->at(p - s.tool_position());
-    if (sd.distance < 1.5 * dx && sd.normal.x() < -0.7 && p.y() > s.tool_position().y() + c.edge_radius) {
-      tsum += s.temperature()[i];
-      ++tn;
-    }
   }
-  r.rake_temperature = tn ? tsum / static_cast<double>(tn) : nan_value();
-  tsum = 0.0;
-  tn = 0;
+  r.rake_temperature = rake_face_temperature();
+  r.rake_temperature_avg = rake_avg_n ? rake_avg_sum / rake_avg_n : nan_value();
+  double tsum = 0.0;
+  std::size_t tn = 0;
   r.tool_T_max = nan_value();
   if (c.tool_conduction) {
     r.tool_T_max = 0.0;
@@ -360,6 +376,7 @@ SolverSpec detail::cutting_spec() {
                {"rake_friction_ratio", Dim::dimensionless, "sum |f_t| / sum |f_n| over rake-face contacts (steady part)"},
                {"rake_slip_fraction", Dim::dimensionless, "share of rake-face contacts at the Coulomb limit (steady part)"},
                {"rake_temperature", Dim::temperature, "mean temperature of particles on the rake face at the end"},
+               {"rake_temperature_avg", Dim::temperature, "rake-face mean temperature averaged over the history windows of the steady part"},
                {"T_max", Dim::temperature, "maximum temperature at the end"},
                {"tool_rake_temperature", Dim::temperature, "mean temperature of tool particles on the rake face (up to 2 t_u)"},
                {"tool_T_max", Dim::temperature, "maximum tool temperature"},
@@ -428,6 +445,7 @@ SolverSpec detail::cutting_spec() {
     out.snapshots = r.snapshots;
     if (!r.tool_snapshot.x.empty()) out.snapshots.push_back(r.tool_snapshot);
     out.scalars = {{"F_c", r.fc_mean}, {"F_t", r.ft_mean}, {"rake_temperature", r.rake_temperature},
+                   {"rake_temperature_avg", r.rake_temperature_avg},
                    {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)},
                    {"particles", static_cast<double>(r.particles)},
                    {"tool_rake_temperature", r.tool_rake_temperature}, {"tool_T_max", r.tool_T_max},
@@ -443,7 +461,7 @@ SolverSpec detail::cutting_spec() {
                    {"F_c_edge", r.force_edge.x()}, {"F_t_edge", r.force_edge.y()},
                    {"F_c_flank", r.force_flank.x()}, {"F_t_flank", r.force_flank.y()},
                    {"rake_friction_ratio", r.rake_friction_ratio}, {"rake_slip_fraction", r.rake_slip_fraction}};
-    out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"T_max", "K"},
+    out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"rake_temperature_avg", "K"}, {"T_max", "K"},
                         {"chip_height", "m"}, {"steps", "1"}, {"particles", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
                         {"heat_generated", "J/m"}, {"heat_imbalance", "1"}, {"friction_heat", "J/m"}, {"heat_lost_fraction", "1"},
                         {"friction_heat_tool_share", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},

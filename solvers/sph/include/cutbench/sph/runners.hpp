@@ -65,6 +65,7 @@ struct CuttingResult {
   std::vector<double> t, cut, fc, ft;  // windowed means of the force on the tool, N/m
   double fc_mean = 0.0, ft_mean = 0.0;
   double rake_temperature = 0.0, T_max = 0.0, chip_height = 0.0;
+  double rake_temperature_avg = 0.0;  // rake-face sample averaged over the steady part's windows
   double tool_rake_temperature = 0.0, tool_T_max = 0.0;  // tool particles on the rake face / all
   double friction_heat = 0.0, plastic_heat = 0.0;  // J/m
   // heat audit (J/m): generated = plastic + friction; stored in workpiece and tool, lost to the air,

@@ -41,5 +41,9 @@ expect_eval "eval rake 90"        "rake"    atkins_touching G_c=2000 sigma_y=25M
 expect_eval "eval negative mu"    "mu"      atkins_touching G_c=2000 sigma_y=25MPa h=1mm rake=30deg mu=-0.1
 expect_eval "eval wrong unit"     "h: wrong unit" atkins_touching G_c=2000 sigma_y=25MPa h=1MPa rake=30deg
 expect "run cache not writable"  "--run-cache"  run afrasiabi2021/fig03 --run-cache /proc/cutbench-no-such-dir
-expect_cmd "option not a whole number" "completion_guard" bench efg_cutting completion_guard=1.4
+if [[ "$("$cutbench" bench efg_cutting completion_guard=1.4 2>&1 >/dev/null)" == *"unknown benchmark"* ]]; then
+  echo "skip option not a whole number: the EFG solver is not in this build (CUTBENCH_SOLVERS=OFF)"
+else
+  expect_cmd "option not a whole number" "completion_guard" bench efg_cutting completion_guard=1.4
+fi
 exit $fail

@@ -466,13 +466,8 @@ SolverSpec cutting_spec() {
     if (loop) {
       Table hist;
       hist.name = "steady_state";
-      std::vector<double> pd, psd;
-      for (std::size_t i = 0; i < loop_phi.size(); ++i) {
-        pd.push_back(loop_phi[i]);
-        psd.push_back(loop_phi_star[i]);
-      }
-      hist.add("phi", "rad", pd);
-      hist.add("phi_star", "rad", psd);
+      hist.add("phi", "rad", loop_phi);
+      hist.add("phi_star", "rad", loop_phi_star);
       hist.add("fc_bar", "1", loop_fc);
       out.tables.push_back(std::move(hist));
     }
@@ -483,19 +478,13 @@ SolverSpec cutting_spec() {
     add_solver_stats(out, r.solution, dt);
     Table contact;
     contact.name = "rake_contact";
-    std::vector<double> s_over_l, sn, tau, slip, stk;
-    for (std::size_t i = 0; i < r.s.size(); ++i) {
-      s_over_l.push_back(r.s[i] / c.contact_length);
-      sn.push_back(r.sigma_n[i]);
-      tau.push_back(r.tau[i]);
-      slip.push_back(r.slip[i]);
-      stk.push_back(r.stick[i]);
-    }
+    std::vector<double> s_over_l;
+    for (double si : r.s) s_over_l.push_back(si / c.contact_length);
     contact.add("s_over_l", "1", s_over_l);
-    contact.add("sigma_n_over_k", "1", sn);
-    contact.add("tau_over_k", "1", tau);
-    contact.add("slip_velocity", "1", slip);
-    contact.add("stick", "1", stk);
+    contact.add("sigma_n_over_k", "1", r.sigma_n);
+    contact.add("tau_over_k", "1", r.tau);
+    contact.add("slip_velocity", "1", r.slip);
+    contact.add("stick", "1", std::vector<double>(r.stick.begin(), r.stick.end()));
     out.tables.push_back(std::move(contact));
     add_snapshot(out, r.model, r.solution, t1, 1.0);
     out.notes.push_back(std::string(loop || tangent ? "steady-state loop (Fig. 4) on phi; " : "fixed shear angle; ") +

@@ -323,8 +323,11 @@ def draw_plot(case, plot, root, outdir):
     fig.tight_layout()
     base = "%s_%s_%s" % (case["paper"], case["item_id"], plot.get("name", "plot"))
     png, svg = base + ".png", base + ".svg"
-    fig.savefig(os.path.join(outdir, "figures", png), metadata={"Software": None})
-    fig.savefig(os.path.join(outdir, "figures", svg), metadata={"Date": None, "Creator": None})
+    # an equal-aspect snapshot axes is shrunk inside its slot, which tight_layout does not see (the
+    # y label was cut off): save snapshot plots with a tight bounding box
+    tight = {"bbox_inches": "tight", "pad_inches": 0.1} if plot.get("kind") == "snapshot" else {}
+    fig.savefig(os.path.join(outdir, "figures", png), metadata={"Software": None}, **tight)
+    fig.savefig(os.path.join(outdir, "figures", svg), metadata={"Date": None, "Creator": None}, **tight)
     plt.close(fig)
     return png, svg
 

@@ -14,6 +14,7 @@ import math
 import os
 import re
 import sys
+import textwrap
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 import matplotlib  # noqa: E402
@@ -151,9 +152,109 @@ def draw_F_glyphs(ax, sx, sy, snap, c, plot):
     return pc
 
 
+def _attr(obj, name, default=""):
+    v = obj.attrs.get(name, default)
+    return v.decode() if isinstance(v, bytes) else v
+
+
+def field_norm(values, plot):
+    """Colour normalisation of a [[plots]] entry: `norm = "log"` (values below `vmin` drawn at
+    `vmin`; default vmin = vmax / 10^decades, decades = 3) or linear; `vmin`/`vmax` fix the range
+    (the colour bar then shows arrows at a clipped end). Returns (norm, values, extend)."""
+    from matplotlib.colors import LogNorm, Normalize
+    v = np.asarray(values, dtype=float)
+    finite = v[np.isfinite(v)]
+    lo = float(finite.min()) if finite.size else 0.0
+    hi = float(finite.max()) if finite.size else 1.0
+    vmax = float(plot["vmax"]) if "vmax" in plot else hi
+    log = plot.get("norm") == "log"
+    if log:
+        vmax = vmax if vmax > 0 else 1.0
+        vmin = float(plot["vmin"]) if "vmin" in plot else vmax * 10.0 ** -float(plot.get("decades", 3))
+    else:
+        vmin = float(plot["vmin"]) if "vmin" in plot else lo
+    extend = {(True, True): "both", (True, False): "min", (False, True): "max",
+              (False, False): "neither"}[(lo < vmin, hi > vmax)]
+    if log:
+        return LogNorm(vmin=vmin, vmax=vmax), np.clip(v, vmin, None), extend
+    return Normalize(vmin=vmin, vmax=vmax), v, extend
+
+
+def element_edges(cells, parent):
+    """Edges of the parent elements of a sub-triangulated mesh: the edges of `cells` that lie on
+    the boundary or between cells of different parents (`parent` per cell)."""
+    seen = {}
+    for c, tri in enumerate(cells):
+        for a, b in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+            key = (a, b) if a < b else (b, a)
+            if key in seen:
+                if seen[key] is not None and parent[seen[key]] == parent[c]:
+                    seen[key] = None  # interior to one element
+                elif seen[key] is not None:
+                    seen[key] = -1  # between two elements: keep
+            else:
+                seen[key] = c
+    return [k for k, v in seen.items() if v is not None]
+
+
+def draw_mesh_field(fig, ax, sx, sy, snap, plot):
+    """A snapshot with cells (triangles): the field drawn on the mesh with tripcolor, flat per cell
+    for a cell field (snapshot group cell_fields/), Gouraud-interpolated for a point field; the
+    element edges thinly with `mesh = true` (colour `mesh_color`, default grey); velocity arrows interpolated on a regular grid with
+    `arrows = [vx_field, vy_field]` (point fields; `arrow_grid` arrows across x, default 24)."""
+    import matplotlib.tri as mtri
+    from matplotlib.collections import LineCollection
+    cells = snap["cells"][()].astype(np.int64)
+    tri = mtri.Triangulation(sx, sy, cells)
+    cf = snap["cell_fields"] if "cell_fields" in snap else {}
+    field = plot.get("field")
+    pc, label = None, None
+    if field and field in snap and plot.get("center") != "cell":
+        ds, on_cells = snap[field], False
+    elif field and field in cf:
+        ds, on_cells = cf[field], True
+    else:
+        ds = None
+    if ds is not None:
+        norm, values, extend = field_norm(ds[()], plot)
+        cmap = plot.get("cmap", "viridis")
+        if on_cells:
+            pc = ax.tripcolor(tri, facecolors=values, norm=norm, cmap=cmap, shading="flat", edgecolors="none")
+        else:
+            pc = ax.tripcolor(tri, values, norm=norm, cmap=cmap, shading="gouraud")
+        unit = _attr(ds, "units", "1")
+        label = plot.get("clabel") or (field if unit in ("1", "") else "%s (%s)" % (field, unit))
+        cb = fig.colorbar(pc, ax=ax, extend=extend, shrink=0.9)
+        cb.set_label(label, fontsize=9)
+        cb.ax.tick_params(labelsize=8)
+    else:
+        ax.triplot(tri, lw=0.2, color="0.5")
+    if plot.get("mesh"):
+        if "element" in cf:
+            edges = element_edges(cells.tolist(), cf["element"][()])
+        else:
+            edges = {tuple(sorted(e)) for e in tri.edges.tolist()}
+        segs = [((sx[a], sy[a]), (sx[b], sy[b])) for a, b in edges]
+        ax.add_collection(LineCollection(segs, colors=plot.get("mesh_color", "0.6"), linewidths=0.2, alpha=0.6))
+    if plot.get("arrows"):
+        fx, fy = plot["arrows"]
+        if fx in snap and fy in snap:
+            nx = int(plot.get("arrow_grid", 24))
+            x0, x1 = plot.get("xlim", (sx.min(), sx.max()))  # the drawn window
+            y0, y1 = plot.get("ylim", (sy.min(), sy.max()))
+            ny = max(2, int(round(nx * (y1 - y0) / max(x1 - x0, 1e-300))))
+            gx, gy = np.meshgrid(np.linspace(x0, x1, nx + 2)[1:-1], np.linspace(y0, y1, ny + 2)[1:-1])
+            u = mtri.LinearTriInterpolator(tri, snap[fx][()])(gx, gy)
+            v = mtri.LinearTriInterpolator(tri, snap[fy][()])(gx, gy)
+            ax.quiver(gx, gy, u, v, color=plot.get("arrow_color", "w"), width=0.003, headwidth=3.5,
+                      pivot="mid", zorder=3)
+    ax.autoscale_view()
+    return pc
+
+
 def draw_plot(case, plot, root, outdir):
     """Draw one [[plots]] entry; returns (png, svg) names or raises."""
-    fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=110)
+    fig, ax = plt.subplots(figsize=tuple(plot.get("figsize", (6.4, 4.2))), dpi=110)
     h5 = h5py.File(case["h5"], "r") if case.get("h5") else None
     drawn = 0
     try:
@@ -182,7 +283,10 @@ def draw_plot(case, plot, root, outdir):
             # snapshot positions are stored in metres; draw them in the unit named in the axis label
             sx = convert(snap["x"][()], "m", axis_unit(plot.get("xlabel", ""), "mm"))
             sy = convert(snap["y"][()], "m", axis_unit(plot.get("ylabel", ""), "mm"))
-            if plot.get("glyphs") == "F" and all(k in snap for k in ("F_xx", "F_xy", "F_yx", "F_yy")):
+            if "cells" in snap and plot.get("glyphs") != "F":
+                draw_mesh_field(fig, ax, sx, sy, snap, plot)
+                c = None  # colour bar drawn with the field
+            elif plot.get("glyphs") == "F" and all(k in snap for k in ("F_xx", "F_xy", "F_yx", "F_yy")):
                 sc = draw_F_glyphs(ax, sx, sy, snap, c, plot)
             else:
                 sc = ax.scatter(sx, sy, c=c, s=plot.get("size", 2),
@@ -207,15 +311,23 @@ def draw_plot(case, plot, root, outdir):
         ax.set_xlim(*plot["xlim"])
     if plot.get("ylim"):
         ax.set_ylim(*plot["ylim"])
-    ax.set_title(plot.get("title", ""), fontsize=10)
+    # long titles wrapped, not cut off at the figure edge
+    title = textwrap.fill(plot.get("title", ""), int(plot.get("title_wrap", 62)))
+    if plot.get("kind") == "snapshot":
+        fig.suptitle(title, fontsize=9)  # centred on the figure: an equal-aspect axes may be narrow
+    else:
+        ax.set_title(title, fontsize=9)
     ax.grid(True, alpha=0.3)
     if any(l.get("label") for l in plot.get("lines", [])):
         ax.legend(fontsize=7, loc=plot.get("legend", "best"))
     fig.tight_layout()
     base = "%s_%s_%s" % (case["paper"], case["item_id"], plot.get("name", "plot"))
     png, svg = base + ".png", base + ".svg"
-    fig.savefig(os.path.join(outdir, "figures", png), metadata={"Software": None})
-    fig.savefig(os.path.join(outdir, "figures", svg), metadata={"Date": None, "Creator": None})
+    # an equal-aspect snapshot axes is shrunk inside its slot, which tight_layout does not see (the
+    # y label was cut off): save snapshot plots with a tight bounding box
+    tight = {"bbox_inches": "tight", "pad_inches": 0.1} if plot.get("kind") == "snapshot" else {}
+    fig.savefig(os.path.join(outdir, "figures", png), metadata={"Software": None}, **tight)
+    fig.savefig(os.path.join(outdir, "figures", svg), metadata={"Date": None, "Creator": None}, **tight)
     plt.close(fig)
     return png, svg
 

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 
 #include "cutbench/common/errors.hpp"
@@ -306,6 +307,99 @@ sweep = { param = "x", values = ["1 mm", "2 mm"] }
   BOOST_TEST(j["status"].get<std::string>() == "NOT RUN");  // no checks
 }
 
+namespace {
+// A snapshot with a mesh: two triangles on four points, one point field and two cell fields.
+Snapshot mesh_snapshot() {
+  Snapshot snap;
+  snap.time = 0.5;
+  snap.x = {0.0, 1.0, 1.0, 0.0};
+  snap.y = {0.0, 0.0, 1.0, 1.0};
+  snap.add("v_x", "m/s", {0.0, 1.0, 2.0, 1.0 / 3.0});
+  snap.cells = {0, 1, 2, 0, 2, 3};
+  snap.add_cell_field("dissipation_density", "1", {0.125, 1.0 / 7.0});
+  snap.add_cell_field("element", "1", {4.0, 4.0});
+  return snap;
+}
+
+std::vector<hsize_t> h5_dims(hid_t file, const std::string& path) {
+  const hid_t ds = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  if (ds < 0) return {};
+  const hid_t sp = H5Dget_space(ds);
+  std::vector<hsize_t> d(static_cast<std::size_t>(H5Sget_simple_extent_ndims(sp)));
+  H5Sget_simple_extent_dims(sp, d.data(), nullptr);
+  H5Sclose(sp);
+  H5Dclose(ds);
+  return d;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(hdf5_snapshot_with_cells_is_a_triangle_mesh) {
+  add_toy();
+  const fs::path f = write_case("toy_mesh", R"(status = "implemented"
+[[series]]
+name = "line"
+model = "toy_linear"
+sweep = { param = "x", values = ["1 mm"] }
+)");
+  CaseSpec c = load_case(f, "quick");
+  CaseResult r = run_case(c, "quick", nullptr);
+  RunOutput run;
+  run.snapshots.push_back(mesh_snapshot());
+  Snapshot cloud;  // a particle snapshot next to it stays a point cloud
+  cloud.x = {0.5};
+  cloud.y = {0.5};
+  cloud.add("T", "K", {300.0});
+  run.snapshots.push_back(cloud);
+  r.series[0].runs = {run};
+  const fs::path out = fs::temp_directory_path() / "cutbench_test_mesh_results";
+  fs::remove_all(out);
+  const fs::path h5 = write_hdf5(c, r, out);
+  const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  BOOST_REQUIRE(file >= 0);
+  const std::string g = "/series/line/point_0/snapshots/";
+  BOOST_TEST((h5_dims(file, g + "0/cells") == std::vector<hsize_t>{2, 3}));
+  BOOST_TEST((h5_dims(file, g + "0/xy") == std::vector<hsize_t>{4, 2}));
+  BOOST_TEST((h5_dims(file, g + "0/v_x") == std::vector<hsize_t>{4}));
+  BOOST_TEST((h5_dims(file, g + "0/cell_fields/dissipation_density") == std::vector<hsize_t>{2}));
+  BOOST_TEST((h5_dims(file, g + "0/cell_fields/element") == std::vector<hsize_t>{2}));
+  BOOST_TEST(h5_dims(file, g + "1/cells").empty());  // no mesh, no connectivity
+  {
+    long long cells[6] = {};
+    const hid_t ds = H5Dopen2(file, (g + "0/cells").c_str(), H5P_DEFAULT);
+    H5Dread(ds, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, cells);
+    H5Dclose(ds);
+    BOOST_TEST((std::vector<long long>(cells, cells + 6) == std::vector<long long>{0, 1, 2, 0, 2, 3}));
+    double d[2] = {};
+    const hid_t df = H5Dopen2(file, (g + "0/cell_fields/dissipation_density").c_str(), H5P_DEFAULT);
+    BOOST_TEST(H5Aexists(df, "units") > 0);
+    H5Dread(df, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, d);
+    H5Dclose(df);
+    BOOST_TEST(d[1] == 1.0 / 7.0);  // bit-exact
+  }
+  H5Fclose(file);
+  std::ifstream in(out / "nairn2015" / "toy_mesh.xdmf");
+  const std::string xdmf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  BOOST_TEST(xdmf.find("TopologyType=\"Triangle\" NumberOfElements=\"2\"") != std::string::npos);
+  BOOST_TEST(xdmf.find("Dimensions=\"2 3\" Format=\"HDF\" NumberType=\"Int\"") != std::string::npos);
+  BOOST_TEST(xdmf.find("/point_0/snapshots/0/cells<") != std::string::npos);
+  BOOST_TEST(xdmf.find("Name=\"v_x\" Center=\"Node\"") != std::string::npos);
+  BOOST_TEST(xdmf.find("Name=\"dissipation_density\" Center=\"Cell\"") != std::string::npos);
+  BOOST_TEST(xdmf.find("/snapshots/0/cell_fields/dissipation_density<") != std::string::npos);
+  BOOST_TEST(xdmf.find("TopologyType=\"Polyvertex\" NumberOfElements=\"1\"") != std::string::npos);  // the cloud
+
+  // an inconsistent mesh is refused before anything is written
+  Snapshot bad = mesh_snapshot();
+  bad.cells[5] = 4;  // only 4 points
+  r.series[0].runs[0].snapshots = {bad};
+  fs::remove_all(out);
+  BOOST_CHECK_THROW(write_hdf5(c, r, out), std::runtime_error);
+  BOOST_TEST(!fs::exists(out / "nairn2015" / "toy_mesh.h5"));
+  bad = mesh_snapshot();
+  bad.cell_fields["element"].pop_back();
+  r.series[0].runs[0].snapshots = {bad};
+  BOOST_CHECK_THROW(write_hdf5(c, r, out), std::runtime_error);
+}
+
 BOOST_AUTO_TEST_CASE(run_cache_round_trip) {
   RunOutput run;
   Table t;
@@ -319,6 +413,8 @@ BOOST_AUTO_TEST_CASE(run_cache_round_trip) {
   snap.y = {2.0, 3.0};
   snap.add("T", "K", {300.0, 1200.5});
   run.snapshots.push_back(snap);
+  const Snapshot mesh = mesh_snapshot();
+  run.snapshots.push_back(mesh);
   run.set_scalar("F_c", 1.0 / 3.0, "N/m");
   run.set_scalar("steps", 12345.0, "1");
   run.notes = {"a note", ""};
@@ -336,10 +432,22 @@ BOOST_AUTO_TEST_CASE(run_cache_round_trip) {
   BOOST_TEST((back.tables[0].order == t.order));
   BOOST_TEST((back.tables[0].columns == t.columns));
   BOOST_TEST((back.tables[0].units == t.units));
-  BOOST_REQUIRE(back.snapshots.size() == 1u);
+  BOOST_REQUIRE(back.snapshots.size() == 2u);
   BOOST_TEST(back.snapshots[0].time == 4e-6);
   BOOST_TEST((back.snapshots[0].x == snap.x));
   BOOST_TEST((back.snapshots[0].fields == snap.fields));
+  BOOST_TEST(back.snapshots[0].cells.empty());
+  BOOST_TEST(back.snapshots[0].cell_fields.empty());
+  const Snapshot& m = back.snapshots[1];  // the mesh, bit-exact
+  BOOST_TEST((m.x == mesh.x));
+  BOOST_TEST((m.y == mesh.y));
+  BOOST_TEST((m.order == mesh.order));
+  BOOST_TEST((m.fields == mesh.fields));
+  BOOST_TEST((m.units == mesh.units));
+  BOOST_TEST((m.cells == mesh.cells));
+  BOOST_TEST((m.cell_order == mesh.cell_order));
+  BOOST_TEST((m.cell_fields == mesh.cell_fields));
+  BOOST_TEST((m.cell_units == mesh.cell_units));
   BOOST_TEST((back.scalars == run.scalars));  // bit-exact
   BOOST_TEST((back.scalar_units == run.scalar_units));
   BOOST_TEST((back.notes == run.notes));

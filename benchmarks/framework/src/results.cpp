@@ -76,6 +76,33 @@ void dataset(hid_t group, const std::string& name, const std::vector<double>& v,
   attr_string(ds, "units", unit);
 }
 
+// The connectivity of a snapshot's triangles as an (n_cells, 3) int64 dataset "cells".
+void write_cells(hid_t group, const Snapshot& snap) {
+  const std::size_t nc = snap.num_cells();
+  std::vector<long long> c(snap.cells.begin(), snap.cells.end());
+  hsize_t dims[2] = {nc, 3};
+  H5Id space(H5Screate_simple(2, dims, nullptr), H5Sclose);
+  H5Id ds(H5Dcreate2(group, "cells", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  if (!c.empty()) H5Dwrite(ds, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.data());
+  attr_string(ds, "topology", "triangle");
+  attr_string(ds, "units", "1");
+}
+
+// A snapshot whose arrays disagree in length would give a broken XDMF grid: refuse it.
+void check_snapshot(const Snapshot& snap, const std::string& where) {
+  const std::size_t n = snap.x.size();
+  auto bad = [&](const std::string& what) { throw std::runtime_error("snapshot " + where + ": " + what); };
+  if (snap.y.size() != n) bad("x and y differ in length");
+  for (const auto& f : snap.order)
+    if (snap.fields.at(f).size() != n) bad("point field '" + f + "' has not one value per point");
+  if (snap.cells.size() % 3 != 0) bad("cells is not a multiple of 3 (triangles)");
+  for (int i : snap.cells)
+    if (i < 0 || static_cast<std::size_t>(i) >= n) bad("a cell refers to point " + std::to_string(i) + " of " + std::to_string(n));
+  for (const auto& f : snap.cell_order)
+    if (snap.cell_fields.at(f).size() != snap.num_cells()) bad("cell field '" + f + "' has not one value per cell");
+  if (snap.cells.empty() && !snap.cell_order.empty()) bad("cell fields without cells");
+}
+
 hid_t make_group(hid_t parent, const std::string& name) {
   return H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
 }
@@ -164,6 +191,10 @@ fs::path write_hdf5(const CaseSpec& spec, const CaseResult& result, const fs::pa
   fs::create_directories(dir);
   const fs::path final_path = dir / (spec.item_id + ".h5");
   const fs::path tmp = final_path.string() + ".tmp." + std::to_string(::getpid());
+  for (const auto& s : result.series)  // before anything is written
+    for (std::size_t k = 0; k < s.runs.size(); ++k)
+      for (std::size_t j = 0; j < s.runs[k].snapshots.size(); ++j)
+        check_snapshot(s.runs[k].snapshots[j], s.name + "/point_" + std::to_string(k) + "/" + std::to_string(j));
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   std::ostringstream xdmf;
   bool have_snapshots = false;
@@ -233,18 +264,41 @@ fs::path write_hdf5(const CaseSpec& spec, const CaseResult& result, const fs::pa
               attr_string(ds, "units", "m");
             }
             for (const auto& f : snap.order) dataset(one, f, snap.fields.at(f), snap.units.at(f));
-            // XDMF grid for ParaView (polyvertex points with attributes)
+            const std::size_t nc = snap.num_cells();
+            if (!snap.cells.empty()) {
+              write_cells(one, snap);
+              H5Id cg(make_group(one, "cell_fields"), H5Gclose);
+              std::string order;
+              for (const auto& f : snap.cell_order) {
+                dataset(cg, f, snap.cell_fields.at(f), snap.cell_units.at(f));
+                order += (order.empty() ? "" : ",") + f;
+              }
+              attr_string(cg, "columns", order);
+            }
+            // XDMF grid for ParaView: polyvertex points with attributes, or the triangles with
+            // node and cell attributes when the snapshot has a mesh
             const std::string base = final_path.filename().string() + ":/series/" + s.name + "/point_" +
                                      std::to_string(k) + "/snapshots/" + name;
             const std::size_t n = snap.x.size();
             xdmf << "      <Grid Name=\"" << s.name << "_" << k << "_" << name << "\" GridType=\"Uniform\">\n"
-                 << "        <Time Value=\"" << snap.time << "\"/>\n"
-                 << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
-                 << "        <Geometry GeometryType=\"XY\"><DataItem Dimensions=\"" << n
+                 << "        <Time Value=\"" << snap.time << "\"/>\n";
+            if (nc > 0) {
+              xdmf << "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << nc << "\"><DataItem Dimensions=\""
+                   << nc << " 3\" Format=\"HDF\" NumberType=\"Int\" Precision=\"8\">" << base
+                   << "/cells</DataItem></Topology>\n";
+            } else {
+              xdmf << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n";
+            }
+            xdmf << "        <Geometry GeometryType=\"XY\"><DataItem Dimensions=\"" << n
                  << " 2\" Format=\"HDF\" NumberType=\"Float\" Precision=\"8\">" << base << "/xy</DataItem></Geometry>\n";
             for (const auto& f : snap.order) {
               xdmf << "        <Attribute Name=\"" << f << "\" Center=\"Node\"><DataItem Dimensions=\"" << n
                    << "\" Format=\"HDF\" NumberType=\"Float\" Precision=\"8\">" << base << "/" << f
+                   << "</DataItem></Attribute>\n";
+            }
+            for (const auto& f : snap.cell_order) {
+              xdmf << "        <Attribute Name=\"" << f << "\" Center=\"Cell\"><DataItem Dimensions=\"" << nc
+                   << "\" Format=\"HDF\" NumberType=\"Float\" Precision=\"8\">" << base << "/cell_fields/" << f
                    << "</DataItem></Attribute>\n";
             }
             xdmf << "      </Grid>\n";

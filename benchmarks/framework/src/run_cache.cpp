@@ -17,7 +17,8 @@ namespace cutbench::framework {
 
 namespace {
 
-constexpr char kMagic[8] = {'C', 'B', 'R', 'U', 'N', '0', '0', '1'};
+// format version in the last three characters: 002 added the snapshot mesh (cells, cell fields)
+constexpr char kMagic[8] = {'C', 'B', 'R', 'U', 'N', '0', '0', '2'};
 
 std::string g_cache_dir;
 
@@ -42,6 +43,10 @@ public:
   void vec(const std::vector<double>& v) {
     u64(v.size());
     o_.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(double)));
+  }
+  void ints(const std::vector<int>& v) {
+    u64(v.size());
+    for (int i : v) u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(i)));
   }
   void strings(const std::vector<std::string>& v) {
     u64(v.size());
@@ -86,6 +91,12 @@ public:
     std::vector<double> v(n);
     i_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(double)));
     check();
+    return v;
+  }
+  std::vector<int> ints() {
+    const auto n = count(8);
+    std::vector<int> v(n);
+    for (auto& i : v) i = static_cast<int>(static_cast<std::int64_t>(u64()));
     return v;
   }
   std::vector<std::string> strings() {
@@ -198,6 +209,13 @@ void save_run(const std::string& path, const std::string& key, const RunOutput& 
         w.str(s.units.count(f) ? s.units.at(f) : std::string());
         w.vec(s.fields.at(f));
       }
+      w.ints(s.cells);
+      w.u64(s.cell_order.size());
+      for (const auto& f : s.cell_order) {
+        w.str(f);
+        w.str(s.cell_units.count(f) ? s.cell_units.at(f) : std::string());
+        w.vec(s.cell_fields.at(f));
+      }
     }
     w.u64(run.scalars.size());
     for (const auto& [name, value] : run.scalars) {
@@ -245,6 +263,12 @@ bool load_run(const std::string& path, const std::string& key, RunOutput& run) {
         const std::string field = r.str();
         const std::string unit = r.str();
         s.add(field, unit, r.vec());
+      }
+      s.cells = r.ints();
+      for (auto f = r.u64(); f > 0; --f) {
+        const std::string field = r.str();
+        const std::string unit = r.str();
+        s.add_cell_field(field, unit, r.vec());
       }
       out.snapshots.push_back(std::move(s));
     }

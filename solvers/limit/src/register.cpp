@@ -71,10 +71,55 @@ void add_snapshot(RunOutput& out, const LimitModel& m, const LimitSolution& s, d
     vx.push_back(s.velocity[2 * i] * velocity_scale);
     vy.push_back(s.velocity[2 * i + 1] * velocity_scale);
   }
+  std::vector<double> vmag(vx.size());
+  for (std::size_t i = 0; i < vx.size(); ++i) vmag[i] = std::hypot(vx[i], vy[i]);
   snap.add("v_x", "m/s", vx);
   snap.add("v_y", "m/s", vy);
+  snap.add("v_mag", "m/s", std::move(vmag));
+  // The mesh: each T6 split into 4 linear sub-triangles (corners 0-3-5, 3-1-4, 5-4-2 and the
+  // middle 3-4-5, all counter-clockwise), so the quadratic velocity is drawn through all six
+  // nodes. Cell fields per sub-triangle: the linear element stress evaluated at the
+  // sub-triangle's centroid (exact: the mean of its three corner values; the four values
+  // average to the element mean), σ_eq/k = sqrt(J2)/k of that stress, and the element's
+  // dissipation density and index on all four.
+  const int ne = m.mesh.num_elements();
+  static constexpr int kSub[4][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}};
+  snap.cells.reserve(static_cast<std::size_t>(12 * ne));
+  std::vector<double> cxx, cyy, cxy, cp, ceq, cdis, cel;
+  for (int e = 0; e < ne; ++e) {
+    const auto& c = m.mesh.elements[static_cast<std::size_t>(e)];
+    // the stress at the six nodes (vertices: stress points; mid-side: edge means), over k
+    Eigen::Matrix<double, 6, 3> sn;
+    for (int i = 0; i < 3; ++i) sn.row(i) = s.stress.row(3 * e + i) / m.k;
+    sn.row(3) = 0.5 * (sn.row(0) + sn.row(1));
+    sn.row(4) = 0.5 * (sn.row(1) + sn.row(2));
+    sn.row(5) = 0.5 * (sn.row(2) + sn.row(0));
+    for (const auto& t : kSub) {
+      Eigen::RowVector3d sc = Eigen::RowVector3d::Zero();
+      for (int j = 0; j < 3; ++j) {
+        snap.cells.push_back(c[static_cast<std::size_t>(t[j])]);
+        sc += sn.row(t[j]) / 3.0;
+      }
+      const double qq = 0.5 * (sc(0) - sc(1));
+      cxx.push_back(sc(0));
+      cyy.push_back(sc(1));
+      cxy.push_back(sc(2));
+      cp.push_back(0.5 * (sc(0) + sc(1)));
+      ceq.push_back(std::sqrt(qq * qq + sc(2) * sc(2)));
+      cdis.push_back(s.element_dissipation_density[e]);
+      cel.push_back(e);
+    }
+  }
+  snap.add_cell_field("sigma_xx_over_k", "1", std::move(cxx));
+  snap.add_cell_field("sigma_yy_over_k", "1", std::move(cyy));
+  snap.add_cell_field("tau_xy_over_k", "1", std::move(cxy));
+  snap.add_cell_field("mean_stress_over_k", "1", std::move(cp));
+  snap.add_cell_field("sigma_eq_over_k", "1", std::move(ceq));
+  snap.add_cell_field("dissipation_density", "1", std::move(cdis));
+  snap.add_cell_field("element", "1", std::move(cel));
   out.snapshots.push_back(std::move(snap));
-  // element centroids: mean stress of the three stress points (over k) and the non-dimensional
+  // element centroids as a point cloud (kept for scripts reading it): mean stress of the three
+  // stress points (over k), sqrt(J2)/k at the most loaded stress point and the non-dimensional
   // plastic dissipation density
   Snapshot el;
   std::vector<double> sxx, syy, txy, dis, yld;

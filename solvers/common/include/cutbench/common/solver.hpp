@@ -31,18 +31,32 @@ struct Table {
 
 // Particle (or node) snapshot at one time: positions plus per-point fields, written to HDF5 with
 // an XDMF index so ParaView can open it.
+//
+// Optional mesh (finite-element solvers): `cells` holds linear triangles, 3 point indices
+// (0-based, into x/y) per cell, counter-clockwise; `cell_fields` hold one value per cell. Particle
+// snapshots leave both empty and are written as point clouds, as before.
 struct Snapshot {
   double time = 0.0;
   std::vector<double> x, y;
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> fields;
   std::map<std::string, std::string> units;
+  std::vector<int> cells;                                  // 3 per triangle; empty: no mesh
+  std::vector<std::string> cell_order;                     // output order of the cell fields
+  std::map<std::string, std::vector<double>> cell_fields;  // one value per triangle
+  std::map<std::string, std::string> cell_units;
 
   void add(const std::string& field, const std::string& unit, std::vector<double> values) {
     if (!fields.count(field)) order.push_back(field);
     fields[field] = std::move(values);
     units[field] = unit;
   }
+  void add_cell_field(const std::string& field, const std::string& unit, std::vector<double> values) {
+    if (!cell_fields.count(field)) cell_order.push_back(field);
+    cell_fields[field] = std::move(values);
+    cell_units[field] = unit;
+  }
+  std::size_t num_cells() const { return cells.size() / 3; }
 };
 
 struct RunOutput {

@@ -81,7 +81,9 @@ std::vector<double> serration_peaks(const std::vector<double>& s, const std::vec
 namespace {
 
 // Chip metrics (see CuttingResult). x0: initial positions.
-void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const SolidSph& s, CuttingResult& r) {
+// rc_T: rho c of the workpiece and the ambient temperature, for the chip's heat content.
+void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const SolidSph& s, double rho_c,
+                  double T_ambient, CuttingResult& r) {
   const double dx = r.dx;
   const double x_done = s.tool_position().x() + 0.5 * c.uncut_thickness;  // columns the tool has passed
   const double y_cut = c.height - c.uncut_thickness;
@@ -115,6 +117,7 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
         const std::size_t i = members[k].second;
         area += s.mass()[i] / s.density()[i];
         t_sum += s.temperature()[i];
+        r.stored_chip += rho_c * s.mass()[i] / s.density()[i] * (s.temperature()[i] - T_ambient);
         ++t_n;
       }
     }
@@ -316,8 +319,19 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   r.friction_heat = s.friction_heat();
   r.friction_heat_tool = s.friction_heat_to_tool();
   r.tool_share = s.tool_heat_share();
-  chip_metrics(c, x, s, r);
+  const double rho_c = in.thermal.heat.density * in.thermal.heat.specific_heat;
+  chip_metrics(c, x, s, rho_c, in.thermal.boundary.T_ambient, r);
   r.plastic_heat = s.plastic_heat();
+  {
+    const auto& q = s.plastic_heat_by_particle();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const bool layer = x[i].y() > y_low;
+      if (i < q.size()) (layer ? r.plastic_heat_layer : r.plastic_heat_below) += q[i];
+      if (!fixed[i])
+        (layer ? r.stored_layer : r.stored_below) +=
+            rho_c * s.mass()[i] / s.density()[i] * (s.temperature()[i] - in.thermal.boundary.T_ambient);
+    }
+  }
   r.stored_workpiece = s.workpiece_heat_content();
   r.stored_tool = s.tool_heat_content();
   r.heat_lost = s.boundary_heat_loss();
@@ -388,6 +402,11 @@ SolverSpec detail::cutting_spec() {
                {"friction_heat", Dim::force_per_width, "friction heat, J per metre of depth"},
                {"heat_lost_fraction", Dim::dimensionless, "heat lost to the air by convection and radiation / heat generated"},
                {"friction_heat_tool_share", Dim::dimensionless, "fraction of the friction heat put into the tool"},
+               {"plastic_heat_below_fraction", Dim::dimensionless, "share of the plastic heat generated in particles that started below the cut line"},
+               {"stored_layer_fraction", Dim::dimensionless, "heat content at the end of the particles that started in the uncut layer / heat generated"},
+               {"stored_below_fraction", Dim::dimensionless, "heat content at the end of the particles that started below the cut line / heat generated"},
+               {"stored_chip_fraction", Dim::dimensionless, "heat content at the end of the chip columns / heat generated"},
+               {"stored_tool_fraction", Dim::dimensionless, "heat content of the tool at the end / heat generated"},
                {"T_max_x", Dim::length, "x of the hottest workpiece particle relative to the lowest tool edge point"},
                {"T_max_y", Dim::length, "y of the hottest workpiece particle relative to the lowest tool edge point"},
                {"chip_thickness", Dim::length, "chip area / length of the chip's column-centroid line"},
@@ -444,6 +463,8 @@ SolverSpec detail::cutting_spec() {
     out.tables.push_back(std::move(chip));
     out.snapshots = r.snapshots;
     if (!r.tool_snapshot.x.empty()) out.snapshots.push_back(r.tool_snapshot);
+    const double generated = r.plastic_heat + r.friction_heat;
+    const auto share = [generated](double q) { return generated > 0.0 ? q / generated : 0.0; };
     out.scalars = {{"F_c", r.fc_mean}, {"F_t", r.ft_mean}, {"rake_temperature", r.rake_temperature},
                    {"rake_temperature_avg", r.rake_temperature_avg},
                    {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)},
@@ -453,6 +474,9 @@ SolverSpec detail::cutting_spec() {
                    {"friction_heat", r.friction_heat},
                    {"heat_lost_fraction", r.plastic_heat + r.friction_heat > 0.0 ? r.heat_lost / (r.plastic_heat + r.friction_heat) : 0.0},
                    {"friction_heat_tool_share", r.friction_heat > 0.0 ? r.friction_heat_tool / r.friction_heat : 0.0},
+                   {"plastic_heat_below_fraction", r.plastic_heat > 0.0 ? r.plastic_heat_below / r.plastic_heat : 0.0},
+                   {"stored_layer_fraction", share(r.stored_layer)}, {"stored_below_fraction", share(r.stored_below)},
+                   {"stored_chip_fraction", share(r.stored_chip)}, {"stored_tool_fraction", share(r.stored_tool)},
                    {"T_max_x", r.T_max_at.x()}, {"T_max_y", r.T_max_at.y()},
                    {"chip_thickness", r.chip_thickness}, {"chip_T_mean", r.chip_T_mean}, {"chip_ratio", r.chip_thickness / c.uncut_thickness},
                    {"chip_curl", r.chip_curl * 3.14159265358979323846 / 180.0}, {"chip_segments", r.chip_segments},
@@ -464,7 +488,8 @@ SolverSpec detail::cutting_spec() {
     out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"rake_temperature_avg", "K"}, {"T_max", "K"},
                         {"chip_height", "m"}, {"steps", "1"}, {"particles", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
                         {"heat_generated", "J/m"}, {"heat_imbalance", "1"}, {"friction_heat", "J/m"}, {"heat_lost_fraction", "1"},
-                        {"friction_heat_tool_share", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
+                        {"friction_heat_tool_share", "1"}, {"plastic_heat_below_fraction", "1"}, {"stored_layer_fraction", "1"},
+                        {"stored_below_fraction", "1"}, {"stored_chip_fraction", "1"}, {"stored_tool_fraction", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
                         {"chip_thickness", "m"}, {"chip_T_mean", "K"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},
                         {"serration_pitch", "m"}, {"serration_cv", "1"},
                         {"F_c_rake", "N/m"}, {"F_t_rake", "N/m"}, {"F_c_edge", "N/m"}, {"F_t_edge", "N/m"},

@@ -130,10 +130,13 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   std::vector<double> vol(n);
   for (std::size_t i = 0; i < n; ++i) vol[i] = m_[i] / rho_[i];
   const double rc = th_.heat.density * th_.heat.specific_heat;
+  if (plastic_heat_at_.size() != n) plastic_heat_at_.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     if (t_fixed_[i]) continue;
     T_[i] += plastic_dT[i];
-    plastic_heat_ += plastic_dT[i] * rc * vol[i];
+    const double q = plastic_dT[i] * rc * vol[i];
+    plastic_heat_ += q;
+    plastic_heat_at_[i] += q;
   }
   th_dt_acc_ += dt;
   ++th_steps_;

@@ -72,6 +72,11 @@ struct CuttingResult {
   // sunk into the fixed-temperature particles; imbalance = (generated - stored - lost - sunk) / generated
   double stored_workpiece = 0.0, stored_tool = 0.0, heat_lost = 0.0, heat_sunk = 0.0, heat_imbalance = 0.0;
   double friction_heat_tool = 0.0, tool_share = 0.0;  // friction heat put into the tool, J/m; beta
+  // where the heat is (J/m): plastic heat put into, and heat content at the end of, the particles
+  // that started in the uncut layer (above the cut line) and those that started below it, and the
+  // heat content of the chip (the columns counted as chip below)
+  double plastic_heat_layer = 0.0, plastic_heat_below = 0.0;
+  double stored_layer = 0.0, stored_below = 0.0, stored_chip = 0.0;
   Vec2 T_max_at = Vec2::Zero();  // position of T_max relative to the lowest tool edge point
   // Chip (uncut-layer material the tool has passed by more than t_u / 2, columns of the initial
   // lattice, most of whose particles are above the original surface), in cutting order: mean eps_p and centroid of each column. Thickness = chip area / length

@@ -124,6 +124,9 @@ public:
   // heat conducted into the fixed-temperature particles (workpiece and tool sinks), J/m
   double heat_sunk() const { return heat_sunk_; }
   double plastic_heat() const { return plastic_heat_; }  // J per metre of depth, accumulated
+  // plastic heat put into each workpiece particle so far, J per metre of depth (empty before the
+  // first thermal step); sums to plastic_heat()
+  const std::vector<double>& plastic_heat_by_particle() const { return plastic_heat_at_; }
   double boundary_heat_loss() const { return heat_lost_; }
 
   double stable_time_step() const;
@@ -203,6 +206,7 @@ private:
   SurfaceDetection surface_;
   FmfsLaplacian fmfs_;
   double plastic_heat_ = 0.0, heat_lost_ = 0.0, friction_heat_ = 0.0;
+  std::vector<double> plastic_heat_at_;  // per particle, J/m
   double th_dt_acc_ = 0.0, heat_sunk_ = 0.0;
   double friction_heat_tool_ = 0.0, tool_share_ = 0.0;
   std::vector<double> pending_tool_heat_;  // per workpiece particle, J/m, deposited at the next conduction update

@@ -8,6 +8,7 @@
 // tool up). Tool particles (a band of tool_depth around the edge) conduct heat; the far ones are a
 // heat sink at T_inf.
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <map>
 
@@ -80,71 +81,108 @@ std::vector<double> serration_peaks(const std::vector<double>& s, const std::vec
 
 namespace {
 
+// Centred moving average over 2 half + 1 points (shorter at the ends).
+std::vector<double> moving_average(const std::vector<double>& f, std::size_t half) {
+  const std::size_t n = f.size();
+  std::vector<double> g(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t a = k >= half ? k - half : 0, b = std::min(n - 1, k + half);
+    double sum = 0.0;
+    for (std::size_t q = a; q <= b; ++q) sum += f[q];
+    g[k] = sum / static_cast<double>(b - a + 1);
+  }
+  return g;
+}
+
 // Chip metrics (see CuttingResult). x0: initial positions.
-// rc_T: rho c of the workpiece and the ambient temperature, for the chip's heat content.
+// rho_c, T_ambient: rho c of the workpiece and the ambient temperature, for the chip's heat content.
 void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const SolidSph& s, double rho_c,
                   double T_ambient, CuttingResult& r) {
   const double dx = r.dx;
   const double x_done = s.tool_position().x() + 0.5 * c.uncut_thickness;  // columns the tool has passed
   const double y_cut = c.height - c.uncut_thickness;
   // columns of the initial lattice, in cutting order (decreasing x0)
-  std::vector<std::size_t> col_first;
   std::vector<std::pair<double, std::size_t>> members;
+  double x_first = -std::numeric_limits<double>::infinity();  // the first column the tool met
   for (std::size_t i = 0; i < x0.size(); ++i)
-    if (x0[i].y() > y_cut + 0.25 * dx && x0[i].x() > x_done) members.emplace_back(-x0[i].x(), i);
+    if (x0[i].y() > y_cut + 0.25 * dx) {
+      x_first = std::max(x_first, x0[i].x());
+      if (x0[i].x() > x_done) members.emplace_back(-x0[i].x(), i);
+    }
   std::sort(members.begin(), members.end());
   double area = 0.0, t_sum = 0.0;
   std::size_t t_n = 0;
   for (std::size_t a = 0; a < members.size();) {
     std::size_t b = a;
+    while (b < members.size() && std::abs(members[b].first - members[a].first) < 0.25 * dx) ++b;
+    // the chip part of the column: its particles above the original surface (a few particles of a
+    // column can stay on the machined surface; counting them pulled the centroid out of the chip)
     double eps = 0.0;
     Vec2 cen = Vec2::Zero();
     std::size_t lifted = 0;
-    while (b < members.size() && std::abs(members[b].first - members[a].first) < 0.25 * dx) {
-      const std::size_t i = members[b].second;
+    for (std::size_t k = a; k < b; ++k) {
+      const std::size_t i = members[k].second;
+      if (s.positions()[i].y() <= c.height) continue;
       eps += s.plastic_strain()[i];
       cen += s.positions()[i];
-      lifted += s.positions()[i].y() > c.height ? 1 : 0;
-      ++b;
+      ++lifted;
+      area += s.mass()[i] / s.density()[i];
+      t_sum += s.temperature()[i];
+      r.stored_chip += rho_c * s.mass()[i] / s.density()[i] * (s.temperature()[i] - T_ambient);
+      ++t_n;
     }
-    const double cnt = static_cast<double>(b - a);
     if (2 * lifted > b - a) {  // most of the column went into the chip
+      const double cnt = static_cast<double>(lifted);
       r.chip_x0.push_back(-members[a].first);
+      r.chip_u.push_back(x_first + members[a].first);
       r.chip_eps.push_back(eps / cnt);
       r.chip_cx.push_back(cen.x() / cnt);
       r.chip_cy.push_back(cen.y() / cnt);
+    } else {  // not a chip column: take its lifted particles back out of the chip sums
       for (std::size_t k = a; k < b; ++k) {
         const std::size_t i = members[k].second;
-        area += s.mass()[i] / s.density()[i];
-        t_sum += s.temperature()[i];
-        r.stored_chip += rho_c * s.mass()[i] / s.density()[i] * (s.temperature()[i] - T_ambient);
-        ++t_n;
+        if (s.positions()[i].y() <= c.height) continue;
+        area -= s.mass()[i] / s.density()[i];
+        t_sum -= s.temperature()[i];
+        r.stored_chip -= rho_c * s.mass()[i] / s.density()[i] * (s.temperature()[i] - T_ambient);
+        --t_n;
       }
     }
     a = b;
   }
   const std::size_t nc = r.chip_x0.size();
+  // centroid line, smoothed over 3 columns (particle disorder across the chip makes the raw line
+  // zig-zag and too long)
+  const auto sx = moving_average(r.chip_cx, 1), sy = moving_average(r.chip_cy, 1);
   r.chip_s.assign(nc, 0.0);
-  for (std::size_t k = 1; k < nc; ++k)
-    r.chip_s[k] = r.chip_s[k - 1] + std::hypot(r.chip_cx[k] - r.chip_cx[k - 1], r.chip_cy[k] - r.chip_cy[k - 1]);
+  for (std::size_t k = 1; k < nc; ++k) r.chip_s[k] = r.chip_s[k - 1] + std::hypot(sx[k] - sx[k - 1], sy[k] - sy[k - 1]);
   r.chip_length = nc ? r.chip_s.back() : 0.0;
   r.chip_thickness = r.chip_length > 0.0 ? area / r.chip_length : nan_value();
   r.chip_T_mean = t_n ? t_sum / static_cast<double>(t_n) : nan_value();
   r.chip_curl = nan_value();
   r.chip_segments = r.serration_pitch = r.serration_cv = nan_value();
   if (nc < 6) return;
-  // curl: direction of the centroid line over the first third versus the last third (degrees)
+  // curl: direction of the (smoothed) centroid line over the first third versus the last third
   const std::size_t third = nc / 3;
-  const Vec2 d0(r.chip_cx[third] - r.chip_cx[0], r.chip_cy[third] - r.chip_cy[0]);
-  const Vec2 d1(r.chip_cx[nc - 1] - r.chip_cx[nc - 1 - third], r.chip_cy[nc - 1] - r.chip_cy[nc - 1 - third]);
+  const Vec2 d0(sx[third] - sx[0], sy[third] - sy[0]);
+  const Vec2 d1(sx[nc - 1] - sx[nc - 1 - third], sy[nc - 1] - sy[nc - 1 - third]);
   r.chip_curl = std::abs(std::atan2(d0.x() * d1.y() - d0.y() * d1.x(), d0.dot(d1))) * 180.0 / 3.14159265358979323846;
-  // serration of the eps_p profile
+  // serration: the column-mean eps_p against the position u along the uncut layer, after the entry
+  // transient (the first 2 t_u of cut), smoothed over 3 columns
+  std::vector<double> u, f;
+  for (std::size_t k = 0; k < nc; ++k)
+    if (r.chip_u[k] >= 2.0 * c.uncut_thickness) {
+      u.push_back(r.chip_u[k]);
+      f.push_back(r.chip_eps[k]);
+    }
+  if (u.size() < 6) return;
+  f = moving_average(f, 1);
   double mean = 0.0, var = 0.0;
-  for (double e : r.chip_eps) mean += e;
-  mean /= static_cast<double>(nc);
-  for (double e : r.chip_eps) var += (e - mean) * (e - mean);
-  r.serration_cv = mean > 0.0 ? std::sqrt(var / static_cast<double>(nc)) / mean : 0.0;
-  const auto peaks = serration_peaks(r.chip_s, r.chip_eps, 0.2);
+  for (double e : f) mean += e;
+  mean /= static_cast<double>(f.size());
+  for (double e : f) var += (e - mean) * (e - mean);
+  r.serration_cv = mean > 0.0 ? std::sqrt(var / static_cast<double>(f.size())) / mean : 0.0;
+  const auto peaks = serration_peaks(u, f, 0.2);
   r.chip_segments = static_cast<double>(peaks.size());
   r.serration_pitch = peaks.size() >= 2 ? (peaks.back() - peaks.front()) / static_cast<double>(peaks.size() - 1)
                                         : nan_value();
@@ -410,12 +448,12 @@ SolverSpec detail::cutting_spec() {
                {"T_max_x", Dim::length, "x of the hottest workpiece particle relative to the lowest tool edge point"},
                {"T_max_y", Dim::length, "y of the hottest workpiece particle relative to the lowest tool edge point"},
                {"chip_thickness", Dim::length, "chip area / length of the chip's column-centroid line"},
-               {"chip_T_mean", Dim::temperature, "mean temperature of the chip particles at the end"},
+               {"chip_T_mean", Dim::temperature, "mean temperature of the chip particles (lifted particles of the chip columns) at the end"},
                {"chip_ratio", Dim::dimensionless, "chip thickness / uncut thickness"},
                {"chip_curl", Dim::angle, "turning angle of the chip centroid line, first to last third"},
-               {"chip_segments", Dim::dimensionless, "peaks of the column-mean eps_p profile along the chip (hysteresis 0.2 x mean)"},
-               {"serration_pitch", Dim::length, "mean distance along the chip between eps_p peaks (NaN below 2 peaks)"},
-               {"serration_cv", Dim::dimensionless, "std / mean of the column-mean eps_p profile along the chip"}};
+               {"chip_segments", Dim::dimensionless, "peaks of the column-mean eps_p profile along the uncut layer after 2 t_u of cut (3-column mean, hysteresis 0.2 x mean)"},
+               {"serration_pitch", Dim::length, "mean distance between eps_p peaks along the uncut layer (NaN below 2 peaks)"},
+               {"serration_cv", Dim::dimensionless, "std / mean of the smoothed column-mean eps_p profile after 2 t_u of cut"}};
   s.run = [](const Values& v, const ProgressFn& progress) {
     CuttingSetup c;
     const double n = v.at("particles_over_height");
@@ -456,6 +494,7 @@ SolverSpec detail::cutting_spec() {
     Table chip;
     chip.name = "chip";
     chip.add("x0", "m", r.chip_x0);
+    chip.add("u", "m", r.chip_u);
     chip.add("s", "m", r.chip_s);
     chip.add("eps_p", "1", r.chip_eps);
     chip.add("cx", "m", r.chip_cx);

@@ -78,12 +78,15 @@ struct CuttingResult {
   double plastic_heat_layer = 0.0, plastic_heat_below = 0.0;
   double stored_layer = 0.0, stored_below = 0.0, stored_chip = 0.0;
   Vec2 T_max_at = Vec2::Zero();  // position of T_max relative to the lowest tool edge point
-  // Chip (uncut-layer material the tool has passed by more than t_u / 2, columns of the initial
-  // lattice, most of whose particles are above the original surface), in cutting order: mean eps_p and centroid of each column. Thickness = chip area / length
-  // of the centroid line; curl = turning angle of that line (first third to last third);
-  // serration: peaks of the column eps_p profile found with hysteresis 0.2 x mean (segments), mean
-  // centroid-line distance between consecutive peaks (pitch), std/mean of the profile (cv).
-  std::vector<double> chip_x0, chip_eps, chip_cx, chip_cy, chip_s;
+  // Chip: columns of the initial lattice in the uncut layer that the tool has passed by more than
+  // t_u / 2 and most of whose particles are above the original surface; only those lifted particles
+  // count (area, temperature, eps_p, centroid). In cutting order: position u along the uncut layer
+  // (from the first column the tool met), mean eps_p and centroid of each column. Thickness = chip
+  // area / length of the centroid line (smoothed over 3 columns); curl = turning angle of that line
+  // (first third to last third); serration: the eps_p profile against u after the entry transient
+  // (u >= 2 t_u), smoothed over 3 columns, peaks found with hysteresis 0.2 x mean (segments), their
+  // mean spacing in u (pitch, along the uncut layer), std/mean of the profile (cv).
+  std::vector<double> chip_x0, chip_u, chip_eps, chip_cx, chip_cy, chip_s;
   double chip_thickness = 0.0, chip_length = 0.0, chip_curl = 0.0, chip_T_mean = 0.0;
   double chip_segments = 0.0, serration_pitch = 0.0, serration_cv = 0.0;
   // Steady-part mean force on the tool split by the tool face of each contact normal (rake face,

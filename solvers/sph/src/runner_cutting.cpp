@@ -81,6 +81,11 @@ std::vector<double> serration_peaks(const std::vector<double>& s, const std::vec
 
 namespace {
 
+// Heat content of workpiece particle i above the ambient temperature, J per metre of depth.
+double particle_heat(const SolidSph& s, std::size_t i, double rho_c, double T_ambient) {
+  return rho_c * s.mass()[i] / s.density()[i] * (s.temperature()[i] - T_ambient);
+}
+
 // Centred moving average over 2 half + 1 points (shorter at the ends).
 std::vector<double> moving_average(const std::vector<double>& f, std::size_t half) {
   const std::size_t n = f.size();
@@ -117,7 +122,7 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
     while (b < members.size() && std::abs(members[b].first - members[a].first) < 0.25 * dx) ++b;
     // the chip part of the column: its particles above the original surface (a few particles of a
     // column can stay on the machined surface; counting them pulled the centroid out of the chip)
-    double eps = 0.0;
+    double eps = 0.0, col_area = 0.0, col_T = 0.0, col_heat = 0.0;
     Vec2 cen = Vec2::Zero();
     std::size_t lifted = 0;
     for (std::size_t k = a; k < b; ++k) {
@@ -126,10 +131,9 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
       eps += s.plastic_strain()[i];
       cen += s.positions()[i];
       ++lifted;
-      area += s.mass()[i] / s.density()[i];
-      t_sum += s.temperature()[i];
-      r.stored_chip += rho_c * s.mass()[i] / s.density()[i] * (s.temperature()[i] - T_ambient);
-      ++t_n;
+      col_area += s.mass()[i] / s.density()[i];
+      col_T += s.temperature()[i];
+      col_heat += particle_heat(s, i, rho_c, T_ambient);
     }
     if (2 * lifted > b - a) {  // most of the column went into the chip
       const double cnt = static_cast<double>(lifted);
@@ -138,15 +142,10 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
       r.chip_eps.push_back(eps / cnt);
       r.chip_cx.push_back(cen.x() / cnt);
       r.chip_cy.push_back(cen.y() / cnt);
-    } else {  // not a chip column: take its lifted particles back out of the chip sums
-      for (std::size_t k = a; k < b; ++k) {
-        const std::size_t i = members[k].second;
-        if (s.positions()[i].y() <= c.height) continue;
-        area -= s.mass()[i] / s.density()[i];
-        t_sum -= s.temperature()[i];
-        r.stored_chip -= rho_c * s.mass()[i] / s.density()[i] * (s.temperature()[i] - T_ambient);
-        --t_n;
-      }
+      area += col_area;
+      t_sum += col_T;
+      r.stored_chip += col_heat;
+      t_n += lifted;
     }
     a = b;
   }
@@ -366,8 +365,7 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
       const bool layer = x[i].y() > y_low;
       if (i < q.size()) (layer ? r.plastic_heat_layer : r.plastic_heat_below) += q[i];
       if (!fixed[i])
-        (layer ? r.stored_layer : r.stored_below) +=
-            rho_c * s.mass()[i] / s.density()[i] * (s.temperature()[i] - in.thermal.boundary.T_ambient);
+        (layer ? r.stored_layer : r.stored_below) += particle_heat(s, i, rho_c, in.thermal.boundary.T_ambient);
     }
   }
   r.stored_workpiece = s.workpiece_heat_content();

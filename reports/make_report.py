@@ -367,6 +367,67 @@ th{background:#eef1f5}
 """
 
 
+def checks_table(checks):
+    """The table of check records (paper | cutbench | error | tolerance | status)."""
+    rows = ["<table><tr><th>check</th><th>kind</th><th>paper / reference</th><th>cutbench</th>"
+            "<th>error</th><th>tolerance</th><th>units</th><th>status</th><th>source</th></tr>"]
+    for ch in checks:
+        tol = ch.get("tolerance")
+        tol_s = "range" if ch.get("tolerance_type") == "range" else (
+            ("%s rel" % fmt(tol)) if ch.get("tolerance_type") == "relative" else fmt(tol))
+        extra = ""
+        if ch.get("known_failure"):
+            extra += '<br><span class="note">known: %s</span>' % html.escape(ch["known_failure"])
+        if ch.get("message"):
+            extra += '<br><span class="small">%s</span>' % html.escape(ch["message"])
+        rows.append("<tr><td>%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td>"
+                    "<td>%s</td><td>%s</td><td class=\"small\">%s</td></tr>" % (
+                        html.escape(ch["key"]),
+                        ('<br><span class="small">%s</span>' % html.escape(ch["description"]))
+                        if ch.get("description") else "",
+                        ch["kind"], fmt(ch.get("reference")), fmt(ch.get("value")), fmt(ch.get("error")),
+                        tol_s, html.escape(ch["units"]), badge(ch["status"]) + extra,
+                        html.escape(ch.get("source", ""))))
+    rows.append("</table>")
+    return "".join(rows)
+
+
+def full_summary(counts):
+    """'3 PASS, 2 FAIL' for the recorded full-tier runs of a paper ('none' without any)."""
+    if not counts:
+        return "none"
+    return ", ".join("%d %s" % (counts[k], k) for k in ("PASS", "FAIL", "NOT RUN", "NOT IMPLEMENTED") if counts.get(k))
+
+
+def load_full_records(directory):
+    """Recorded full-tier case records (reports/full_tier/<paper>/<item>.json), by case id."""
+    out = {}
+    if not os.path.isdir(directory):
+        return out
+    for paper in sorted(os.listdir(directory)):
+        pdir = os.path.join(directory, paper)
+        if not os.path.isdir(pdir):
+            continue
+        for name in sorted(os.listdir(pdir)):
+            if name.endswith(".json"):
+                with open(os.path.join(pdir, name), encoding="utf-8") as f:
+                    rec = json.load(f)
+                out[rec["case"]] = rec
+    return out
+
+
+def full_tier_block(rec):
+    """A recorded full-tier run of a case: provenance line and its checks."""
+    how = (rec.get("recorded") or {}).get("how", "")
+    return ('<details><summary><b>Full tier (paper resolution), recorded run</b> %s '
+            '<span class="small">run %s · software %s · %s thread(s) · %.3g s wall for this evaluation (≈ 0 where the solver runs came from a run cache; see below)</span></summary>'
+            '<p class="small">How it was run: %s. Recorded in <code>reports/full_tier/%s.json</code>; '
+            'the quick-tier table above is the one this report ran.</p>%s</details>') % (
+        badge(rec.get("status", "NOT RUN")), html.escape(rec.get("date", "")), html.escape(rec.get("software", "")),
+        html.escape(str(rec.get("threads", "?"))), rec.get("wall_time_s", 0) or 0, html.escape(how),
+        html.escape(rec["case"]), checks_table(rec.get("checks") or []))
+
+
 def page(title, body, root_rel=""):
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>%s</title>"
             "<style>%s</style></head><body><header><h1><a href=\"%sindex.html\">cutbench</a> — %s</h1>"
@@ -386,7 +447,10 @@ def main():
     ap.add_argument("--root", required=True)
     ap.add_argument("--results", required=True)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--full-tier", default=None,
+                    help="recorded full-tier runs (default <root>/reports/full_tier)")
     a = ap.parse_args()
+    full_records = load_full_records(a.full_tier or os.path.join(a.root, "reports", "full_tier"))
     with open(os.path.join(a.results, "manifest.json")) as f:
         man = json.load(f)
     os.makedirs(os.path.join(a.out, "figures"), exist_ok=True)
@@ -396,10 +460,12 @@ def main():
         by_paper.setdefault(c["paper"], []).append(c)
 
     summary_rows = []
+    full_totals = {}
     totals = {"PASS": 0, "FAIL": 0, "NOT RUN": 0, "NOT IMPLEMENTED": 0}
     for pid in papers:
         cases = by_paper.get(pid, [])
         counts = {k: 0 for k in totals}
+        full_counts = {}
         body = []
         meta = papers[pid].get("meta", {})
         body.append("<p>%s<br><span class=\"small\">DOI: %s</span></p>" % (
@@ -442,48 +508,39 @@ def main():
                 parts.append('<div class="figs">%s</div>' % "".join(figs))
             checks = last.get("checks") or []
             if checks:
-                parts.append("<table><tr><th>check</th><th>kind</th><th>paper / reference</th><th>cutbench</th>"
-                             "<th>error</th><th>tolerance</th><th>units</th><th>status</th><th>source</th></tr>")
-                for ch in checks:
-                    tol = ch.get("tolerance")
-                    tol_s = "range" if ch.get("tolerance_type") == "range" else (
-                        ("%s rel" % fmt(tol)) if ch.get("tolerance_type") == "relative" else fmt(tol))
-                    extra = ""
-                    if ch.get("known_failure"):
-                        extra += '<br><span class="note">known: %s</span>' % html.escape(ch["known_failure"])
-                    if ch.get("message"):
-                        extra += '<br><span class="small">%s</span>' % html.escape(ch["message"])
-                    parts.append("<tr><td>%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td>"
-                                 "<td>%s</td><td>%s</td><td class=\"small\">%s</td></tr>" % (
-                                     html.escape(ch["key"]),
-                                     ('<br><span class="small">%s</span>' % html.escape(ch["description"]))
-                                     if ch.get("description") else "",
-                                     ch["kind"], fmt(ch.get("reference")), fmt(ch.get("value")), fmt(ch.get("error")),
-                                     tol_s, html.escape(ch["units"]), badge(ch["status"]) + extra,
-                                     html.escape(ch.get("source", ""))))
-                parts.append("</table>")
+                parts.append(checks_table(checks))
             elif c["implemented"]:
                 parts.append('<p class="note">Not run yet in this results directory.</p>')
+            rec = full_records.get(c["case"])
+            if rec:
+                full_counts[rec.get("status", "NOT RUN")] = full_counts.get(rec.get("status", "NOT RUN"), 0) + 1
+                parts.append(full_tier_block(rec))
             parts.append("</div>")
             body.append("".join(parts))
         for k in totals:
             totals[k] += counts.get(k, 0)
         write(os.path.join(a.out, pid + ".html"), page(pid, "".join(body)))
         summary_rows.append("<tr><td><a href=\"%s.html\">%s</a></td><td>%s</td><td>%d</td><td>%d</td><td>%d</td>"
-                            "<td>%d</td><td>%d</td></tr>" % (
+                            "<td>%d</td><td>%d</td><td>%s</td></tr>" % (
                                 pid, pid, html.escape(papers[pid].get("meta", {}).get("citation", "")),
                                 len(cases), counts["PASS"], counts["FAIL"], counts["NOT RUN"],
-                                counts["NOT IMPLEMENTED"]))
+                                counts["NOT IMPLEMENTED"], full_summary(full_counts)))
+        for k, v in full_counts.items():
+            full_totals[k] = full_totals.get(k, 0) + v
     body = ("<p>Software %s · manifest written %s</p>" % (html.escape(man.get("software", "")),
                                                           html.escape(man.get("date", ""))) +
-            "<table><tr><th>paper</th><th>citation</th><th>cases</th><th>%s</th><th>%s</th><th>%s</th><th>%s</th></tr>"
+            "<table><tr><th>paper</th><th>citation</th><th>cases</th><th>%s</th><th>%s</th><th>%s</th><th>%s</th>"
+            "<th>full tier, recorded runs</th></tr>"
             % (badge("PASS"), badge("FAIL"), badge("NOT RUN"), badge("NOT IMPLEMENTED")) +
             "".join(summary_rows) +
-            "<tr><th>all</th><th></th><th>%d</th><th>%d</th><th>%d</th><th>%d</th><th>%d</th></tr></table>" % (
-                sum(totals.values()), totals["PASS"], totals["FAIL"], totals["NOT RUN"], totals["NOT IMPLEMENTED"]) +
+            "<tr><th>all</th><th></th><th>%d</th><th>%d</th><th>%d</th><th>%d</th><th>%d</th><th>%s</th></tr></table>" % (
+                sum(totals.values()), totals["PASS"], totals["FAIL"], totals["NOT RUN"], totals["NOT IMPLEMENTED"],
+                full_summary(full_totals)) +
             "<p class=\"small\">A case is PASS when every check it could evaluate passed (a documented known "
             "failure stays FAIL in its row); NOT RUN when its inputs are missing; NOT IMPLEMENTED when its "
-            "model or solver does not exist yet.</p>")
+            "model or solver does not exist yet. The statuses are those of the quick tier this report ran; the "
+            "last column counts the recorded runs of the full tier (paper resolution, CPU-hours, not part of the "
+            "main job; reports/full_tier, written by reports/record_full_tier.py), shown under each case.</p>")
     write(os.path.join(a.out, "index.html"), page("summary", body))
     print("report: %d cases, %s" % (sum(totals.values()), totals))
 

@@ -1,6 +1,7 @@
 #define BOOST_TEST_MODULE framework
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -533,4 +534,47 @@ params = { a = 1 }
   for (const auto& n : again.series[0].notes) noted = noted || n.find("run cache") != std::string::npos;
   BOOST_TEST(noted);
   fs::remove(f);
+}
+
+// Recorded full-tier runs (reports/full_tier/<paper>/<item>.json, written by
+// reports/record_full_tier.py) are shown in the report next to the quick tier: each must name an
+// existing case and only checks that case evaluates in the full tier, say how it was run, and
+// carry the tolerance the case file states now (a tolerance changed after recording would
+// otherwise show a stale status).
+BOOST_AUTO_TEST_CASE(recorded_full_tier_runs_match_their_case_files) {
+  const fs::path dir = source_root() / "reports" / "full_tier";
+  if (!fs::is_directory(dir)) return;
+  int records = 0;
+  for (const auto& paper : fs::directory_iterator(dir)) {
+    if (!paper.is_directory()) continue;
+    for (const auto& f : fs::directory_iterator(paper.path())) {
+      if (f.path().extension() != ".json") continue;
+      BOOST_TEST_CONTEXT(f.path().string()) {
+        std::ifstream in(f.path());
+        const json rec = json::parse(in);
+        ++records;
+        const std::string id = rec.at("case").get<std::string>();
+        BOOST_TEST(id == paper.path().filename().string() + "/" + f.path().stem().string());
+        BOOST_TEST(rec.at("tier").get<std::string>() == "full");
+        BOOST_TEST(rec.at("recorded").at("how").get<std::string>().size() >= 10u);
+        const CaseSpec cs = load_case(resolve_case(id, source_root()), "full");
+        BOOST_TEST(cs.in_tier("full"));
+        for (const auto& ch : rec.at("checks")) {
+          const std::string key = ch.at("key").get<std::string>();
+          BOOST_TEST_CONTEXT(key) {
+            const CheckSpec* spec = nullptr;
+            for (const auto& c : cs.checks)
+              if (c.key == key && (c.tiers.empty() || std::count(c.tiers.begin(), c.tiers.end(), "full")))
+                spec = &c;
+            BOOST_TEST_REQUIRE(spec != nullptr);
+            BOOST_TEST(ch.at("status").get<std::string>() != "");
+            if (spec->tolerance.is_number() && ch.contains("tolerance") && ch.at("tolerance").is_number())
+              BOOST_TEST(ch.at("tolerance").get<double>() == spec->tolerance.get<double>(),
+                         boost::test_tools::tolerance(1e-12));
+          }
+        }
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE(records << " recorded full-tier case runs checked");
 }

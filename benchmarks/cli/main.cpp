@@ -349,6 +349,10 @@ int main(int argc, char** argv) {
   run->add_option("--run-cache", run_cache,
                   "Directory of finished solver runs, keyed by solver, parameters and software version: "
                   "reuse them and store new ones (resume an interrupted full tier; share runs between cases)");
+  double checkpoint_minutes = 10.0;
+  run->add_option("--checkpoint-minutes", checkpoint_minutes,
+                  "With --run-cache: minutes of wall time between two checkpoints of a solver run that supports "
+                  "them (SPH cutting); an interrupted run resumes from its last checkpoint (default 10)");
   run->add_flag("--ctest", ctest_mode, "Exit 77 (skip) when every selected case is NOT IMPLEMENTED");
   run->add_flag("--strict", strict, "Known failures fail the run too");
 
@@ -390,6 +394,7 @@ int main(int argc, char** argv) {
     if (*list) return cmd_list(list_json, results_dir, list_paper);
     if (*run) {
       set_run_cache_dir(run_cache);
+      set_checkpoint_interval(60.0 * checkpoint_minutes);
       return cmd_run(run_ids, run_paper, run_tier, run_out, ctest_mode, strict);
     }
     if (*eval) {

@@ -12,6 +12,7 @@
 #include "cutbench/analytic/models.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/framework/run_cache.hpp"
+#include "cutbench/common/checkpoint.hpp"
 // Each solver library defines cutbench::<method>::register_solvers(SolverRegistry&).
 #ifdef CUTBENCH_HAVE_MPM
 namespace cutbench::mpm {
@@ -140,9 +141,15 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
         run.notes.push_back("point " + std::to_string(k + 1) + " of series '" + s.name +
                             "' reused from the run cache (" + cache_path + ")");
       } else {
-        run = sv->run(params, inner);
+        // solvers that support checkpoints resume from, and write, <run file>.ckpt
+        const CheckpointSpec ck{cache_path.substr(0, cache_path.size() - 4) + ".ckpt", key, checkpoint_interval(), false};
+        {
+          CheckpointScope scope(ck);
+          run = sv->run(params, inner);
+        }
         try {
           save_run(cache_path, key, run);
+          remove_checkpoint(ck);
         } catch (const std::exception& e) {  // the finished run is kept; only its storage failed
           run.notes.push_back(std::string("run cache: not stored (") + e.what() + ")");
         }

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <map>
 
+#include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/sph/lattice.hpp"
 #include "cutbench/sph/runners.hpp"
@@ -258,6 +259,25 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   int rake_avg_n = 0;
   const int n_snap = std::max(1, c.snapshots);
   int snap_taken = 0;
+  // Checkpoints (cutbench run --run-cache): the solver state and every accumulator of this loop.
+  const CheckpointSpec* ck = active_checkpoint();
+  CheckpointClock ck_clock(ck);
+  auto loop_state = [&](auto&& f64, auto&& vec) {
+    for (double* d : {&acc_fc, &acc_ft, &acc_t, &t_next, &steady_fc, &steady_ft, &steady_t, &rake_ft, &rake_fn,
+                      &rake_slip, &rake_count, &rake_avg_sum, &zone_force[0].x(), &zone_force[0].y(),
+                      &zone_force[1].x(), &zone_force[1].y(), &zone_force[2].x(), &zone_force[2].y()})
+      f64(*d);
+    for (std::vector<double>* v : {&r.t, &r.cut, &r.fc, &r.ft}) vec(*v);
+  };
+  if (ck && read_checkpoint(*ck, [&](BinaryReader& rd) {
+        s.load_state(rd);
+        loop_state([&](double& d) { d = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
+        rake_avg_n = static_cast<int>(rd.u64());
+        snap_taken = static_cast<int>(rd.u64());
+        r.snapshots.clear();
+        for (auto k = rd.u64(); k > 0; --k) r.snapshots.push_back(read_snapshot(rd));
+      }))
+    r.resumed_from_step = s.steps();
   while (s.time() < t_end) {
     const double dt = std::min(s.stable_time_step(), t_end - s.time());
     if (!(dt > 0.0)) break;
@@ -303,6 +323,19 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
       if (progress)
         progress(s.time() / t_end, "cut " + std::to_string(s.time() * c.speed * 1e3) + " mm, step " +
                                        std::to_string(s.steps()));
+    }
+    if (ck_clock.due(s.steps()) && s.time() < t_end) {
+      write_checkpoint(*ck, [&](BinaryWriter& w) {
+        s.save_state(w);
+        loop_state([&](double& d) { w.f64(d); }, [&](std::vector<double>& v) { w.vec(v); });
+        w.u64(static_cast<std::uint64_t>(rake_avg_n));
+        w.u64(static_cast<std::uint64_t>(snap_taken));
+        w.u64(r.snapshots.size());
+        for (const auto& sn : r.snapshots) write_snapshot(w, sn);
+      });
+      ck_clock.written();
+      ++r.checkpoints_written;
+      if (ck->stop_after_write) throw CheckpointStop("sph_cutting: stopped after a checkpoint at step " + std::to_string(s.steps()));
     }
   }
   r.steps = s.steps();
@@ -482,6 +515,9 @@ SolverSpec detail::cutting_spec() {
     c.history_window = c.cut_distance / c.speed / 200.0;
     const auto r = run_cutting(c, progress);
     RunOutput out;
+    if (r.resumed_from_step > 0)
+      out.notes.push_back("sph_cutting: resumed from a checkpoint at step " + std::to_string(r.resumed_from_step) +
+                          " (the result equals an uninterrupted run with the same thread count)");
     Table t;
     t.name = "forces";
     t.add("t", "s", r.t);

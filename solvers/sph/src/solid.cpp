@@ -247,7 +247,12 @@ void SolidSph::update_neighbours() {
     for (std::size_t i = 0; i < x_.size() && !rebuild; ++i) rebuild = (x_[i] - x_listed_[i]).squaredNorm() > lim2;
   }
   if (!rebuild) return;
-  nl_ = build_neighbours(x_, kernel_.support() + std::max(skin, 0.0));
+  rebuild_neighbours(x_);
+}
+
+void SolidSph::rebuild_neighbours(const std::vector<Vec2>& at) {
+  const double skin = opt_.neighbour_skin * kernel_.h();
+  nl_ = build_neighbours(at, kernel_.support() + std::max(skin, 0.0));
   // half list: the tail j > i of every (sorted) row
   const std::size_t n = x_.size();
   half_offset_.assign(n + 1, 0);
@@ -260,8 +265,94 @@ void SolidSph::update_neighbours() {
     half_offset_[i + 1] = half_index_.size();
   }
   pairs_.resize(half_index_.size());
-  x_listed_ = x_;
+  x_listed_ = at;
   ++builds_;
+}
+
+void SolidSph::save_state(BinaryWriter& w) const {
+  w.u64(x_.size());
+  w.pods(x_);
+  w.pods(v_);
+  w.pods(a_);
+  w.pods(m_);
+  w.pods(rho_);
+  w.pods(eps_p_);
+  w.pods(T_);
+  w.pods(S_);
+  w.pods(last_dep_);
+  w.pods(x_listed_);
+  w.pods(contact_p_);
+  w.pods(contact_gap_);
+  w.pods(friction_history_);
+  w.pods(pending_tool_heat_);
+  w.pods(plastic_heat_at_);
+  w.pods(tool_T_);
+  w.pods(surface_.surface);
+  w.pods(surface_.lambda);
+  w.pods(surface_.normal);
+  w.u64(builds_);
+  w.u64(steps_);
+  w.u64(static_cast<std::uint64_t>(th_steps_));
+  for (double d : {time_, plastic_heat_, heat_lost_, friction_heat_, th_dt_acc_, heat_sunk_, friction_heat_tool_,
+                   tool_share_, last_dt_, tool_pos_.x(), tool_pos_.y(), tool_vel_.x(), tool_vel_.y(),
+                   tool_force_.x(), tool_force_.y()})
+    w.f64(d);
+}
+
+void SolidSph::load_state(BinaryReader& r) {
+  const std::size_t n = x_.size();
+  if (r.u64() != n) throw NumericalError("sph checkpoint: particle count differs from the setup");
+  auto per_particle = [n](auto v) {
+    if (v.size() != n) throw NumericalError("sph checkpoint: array size differs from the setup");
+    return v;
+  };
+  x_ = per_particle(r.pods<Vec2>());
+  v_ = per_particle(r.pods<Vec2>());
+  std::vector<Vec2> a = per_particle(r.pods<Vec2>());
+  m_ = per_particle(r.pods<double>());
+  rho_ = per_particle(r.pods<double>());
+  eps_p_ = per_particle(r.pods<double>());
+  T_ = per_particle(r.pods<double>());
+  S_ = per_particle(r.pods<Stress3>());
+  last_dep_ = r.pods<double>();
+  const std::vector<Vec2> listed = per_particle(r.pods<Vec2>());
+  contact_p_ = r.pods<Vec2>();
+  contact_gap_ = r.pods<double>();
+  friction_history_ = r.pods<Vec2>();
+  pending_tool_heat_ = r.pods<double>();
+  plastic_heat_at_ = r.pods<double>();
+  std::vector<double> tool_T = r.pods<double>();
+  if (tool_T.size() != tool_T_.size()) throw NumericalError("sph checkpoint: tool particle count differs from the setup");
+  tool_T_ = std::move(tool_T);
+  surface_.surface = r.pods<char>();
+  surface_.lambda = r.pods<double>();
+  surface_.normal = r.pods<Vec2>();
+  const auto builds = static_cast<std::size_t>(r.u64());
+  steps_ = static_cast<std::size_t>(r.u64());
+  th_steps_ = static_cast<int>(r.u64());
+  time_ = r.f64();
+  plastic_heat_ = r.f64();
+  heat_lost_ = r.f64();
+  friction_heat_ = r.f64();
+  th_dt_acc_ = r.f64();
+  heat_sunk_ = r.f64();
+  friction_heat_tool_ = r.f64();
+  tool_share_ = r.f64();
+  last_dt_ = r.f64();
+  tool_pos_.x() = r.f64();
+  tool_pos_.y() = r.f64();
+  tool_vel_.x() = r.f64();
+  tool_vel_.y() = r.f64();
+  tool_force_.x() = r.f64();
+  tool_force_.y() = r.f64();
+  // The neighbour lists as they were (built at x_listed_), then the pair geometry and packed
+  // particle data of the current positions, which the next step's rate pass reuses; the
+  // accelerations themselves (with the contact forces of the last step) are the stored ones.
+  rebuild_neighbours(listed);
+  accelerations();
+  a_ = std::move(a);
+  have_accel_ = true;
+  builds_ = builds;
 }
 
 namespace {

@@ -27,4 +27,10 @@ bool load_run(const std::string& path, const std::string& key, RunOutput& run);
 void set_run_cache_dir(const std::string& dir);
 const std::string& run_cache_dir();
 
+// Wall time between two checkpoints of a solver run made with the run cache on (solvers that
+// support checkpoints write <solver>-<hash>.ckpt next to the run file and resume from it; the file
+// is removed once the finished run is stored). Default 600 s; must be > 0.
+void set_checkpoint_interval(double seconds);
+double checkpoint_interval();
+
 }  // namespace cutbench::framework

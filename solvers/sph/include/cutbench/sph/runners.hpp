@@ -99,6 +99,8 @@ struct CuttingResult {
   Snapshot snapshot;               // final state: T, eps_p, surface flag
   std::vector<Snapshot> snapshots;  // `snapshots` states, the last one equal to `snapshot`
   Snapshot tool_snapshot;          // final tool particles (world frame) with T
+  std::size_t resumed_from_step = 0;  // > 0: the run resumed from a checkpoint written at that step
+  int checkpoints_written = 0;
 };
 
 // Peaks of a profile f(s) by hysteresis: a peak counts when f rose by more than rel_threshold x

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cutbench/common/binary_io.hpp"
 #include "cutbench/sph/heat.hpp"
 #include "cutbench/sph/johnson_cook.hpp"
 #include "cutbench/sph/tool.hpp"
@@ -118,6 +119,14 @@ public:
   void set_tool_thermal(HeatMaterial tool_heat, double depth);
   const std::vector<Vec2>& tool_particles() const { return tool_x_; }  // tool frame
   const std::vector<double>& tool_temperature() const { return tool_T_; }
+
+  // Checkpoints: the dynamic state (positions, velocities, accelerations, densities, stresses,
+  // plastic strains and their last increments, temperatures of workpiece and tool, contact and
+  // neighbour-list history, heat counters, tool position and force, time and step count).
+  // load_state expects an object built with the same setup (particles, options, tool); the run
+  // then continues bit for bit as if it had not been interrupted (same thread count).
+  void save_state(BinaryWriter& w) const;
+  void load_state(BinaryReader& r);
   double tool_heat_content() const;  // sum rho c V (T - T_ambient) over the tool, J/m
   // sum rho0 c V_i (T_i - T_ambient) over the free (not fixed-temperature) workpiece particles, J/m
   double workpiece_heat_content() const;
@@ -234,6 +243,7 @@ private:
 
   void accelerations();
   void update_neighbours();
+  void rebuild_neighbours(const std::vector<Vec2>& at);
   double yield_floor(double T) const;  // a lower bound of the J-C flow stress at temperature T
 };
 

@@ -356,12 +356,6 @@ void SolidSph::load_state(BinaryReader& r) {
 }
 
 namespace {
-// Per-thread accumulation buffers for the symmetric pair loops: one array of n per thread, zeroed.
-template <class T>
-void prepare_parts(std::vector<std::vector<T>>& parts, std::size_t threads, std::size_t n, const T& zero) {
-  if (parts.size() != threads) parts.resize(threads);
-  for (auto& p : parts) p.assign(n, zero);
-}
 int max_threads() {
 #ifdef _OPENMP
   return omp_get_max_threads();
@@ -378,6 +372,8 @@ void SolidSph::accelerations() {
   const double support2 = support * support;
   pdata_.resize(n);
   const double eps_art = opt_.artificial_stress;
+  // per particle, independent: parallel (the same values with any thread count)
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     const double p = K * (rho_[i] / mat_.density - 1.0);
     const double inv_r2 = 1.0 / (rho_[i] * rho_[i]);
@@ -469,22 +465,30 @@ void SolidSph::accelerations() {
     acc[i].x() += ax;
     acc[i].y() += ay;
   };
-  acc_.assign(n, Vec2::Zero());
-  auto& acc = acc_;
   if (n < detail::kOmpMinParticles) {
-    for (std::size_t i = 0; i < n; ++i) row(i, acc.data());
+    acc_.assign(n, Vec2::Zero());
+    for (std::size_t i = 0; i < n; ++i) row(i, acc_.data());
+    for (std::size_t i = 0; i < n; ++i) a_[i] = fixed_[i] ? Vec2::Zero() : Vec2(acc_[i] + opt_.body_force);
   } else {
-    prepare_parts(acc_part_, static_cast<std::size_t>(max_threads()), n, Vec2(Vec2::Zero()));
+    // Each thread zeroes its own buffer and accumulates its rows; the buffers are then summed per
+    // particle in thread order, ((0 + b_0) + b_1) + ..., in parallel over the particles.
+    const auto nt = static_cast<std::size_t>(max_threads());
+    if (acc_part_.size() != nt) acc_part_.resize(nt);
 #pragma omp parallel
     {
       auto& mine = acc_part_[static_cast<std::size_t>(omp_get_thread_num())];
+      mine.assign(n, Vec2::Zero());
+#pragma omp barrier
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) row(i, mine.data());
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        Vec2 sum = Vec2::Zero();
+        for (std::size_t t = 0; t < nt; ++t) sum += acc_part_[t][i];
+        a_[i] = fixed_[i] ? Vec2::Zero() : Vec2(sum + opt_.body_force);
+      }
     }
-    for (const auto& part : acc_part_)
-      for (std::size_t i = 0; i < n; ++i) acc[i] += part[i];
   }
-  for (std::size_t i = 0; i < n; ++i) a_[i] = fixed_[i] ? Vec2::Zero() : Vec2(acc[i] + opt_.body_force);
   have_accel_ = true;
 }
 
@@ -493,6 +497,7 @@ void SolidSph::step(double dt) {
   const std::size_t n = x_.size();
   if (!have_accel_) accelerations();
   // kick
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
   // rates on x^n with v^{n+1/2} (the pair geometry of accelerations() belongs to x^n)
   const double G = mat_.shear();
@@ -501,6 +506,7 @@ void SolidSph::step(double dt) {
   plastic_dT_.assign(n, 0.0);
   // velocities after the kick into the packed particle data (positions, densities and volumes are
   // those of x^n, filled by accelerations())
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     pdata_[i].vx = v_[i].x();
     pdata_[i].vy = v_[i].y();
@@ -559,26 +565,39 @@ void SolidSph::step(double dt) {
   };
   if (last_dep_.size() != n) last_dep_.assign(n, 0.0);
   const RateAcc zero{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  racc_.assign(n, zero);
+  racc_.resize(n);
   xsph_.resize(n);
-  if (corr) lren_.assign(n, Mat2::Zero());
+  if (corr) lren_.resize(n);
   if (n < detail::kOmpMinParticles) {
+    racc_.assign(n, zero);
+    if (corr) lren_.assign(n, Mat2::Zero());
     for (std::size_t i = 0; i < n; ++i) row(i, racc_.data(), lren_.data());
   } else {
+    // as in accelerations(): per-thread buffers zeroed by their thread, summed per particle in
+    // thread order in parallel
     const auto nt = static_cast<std::size_t>(max_threads());
-    prepare_parts(racc_part_, nt, n, zero);
-    prepare_parts(lren_part_, nt, corr ? n : 0, Mat2(Mat2::Zero()));
+    if (racc_part_.size() != nt) racc_part_.resize(nt);
+    if (lren_part_.size() != nt) lren_part_.resize(nt);
 #pragma omp parallel
     {
       const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      racc_part_[t].assign(n, zero);
+      lren_part_[t].assign(corr ? n : 0, Mat2::Zero());
+#pragma omp barrier
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) row(i, racc_part_[t].data(), lren_part_[t].data());
-    }
-    for (std::size_t t = 0; t < nt; ++t)
+#pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
-        racc_[i] += racc_part_[t][i];
-        if (corr) lren_[i] += lren_part_[t][i];
+        RateAcc ra = zero;
+        for (std::size_t u = 0; u < nt; ++u) ra += racc_part_[u][i];
+        racc_[i] = ra;
+        if (corr) {
+          Mat2 l = Mat2::Zero();
+          for (std::size_t u = 0; u < nt; ++u) l += lren_part_[u][i];
+          lren_[i] = l;
+        }
       }
+    }
   }
   // Constitutive update per particle. Plane strain: S has components xx, yy, zz, xy (the
   // out-of-plane shears stay zero); spin W = [[0, w], [-w, 0]] with w = (grad v)_[xy] antisymmetric part.
@@ -620,12 +639,16 @@ void SolidSph::step(double dt) {
   rho_.swap(rho_new);
   S_.swap(s_new);
   // drift
+  bool finite = true;
+#pragma omp parallel for schedule(static) reduction(&& : finite) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     x_[i] += dt * (fixed_[i] ? v_[i] : Vec2(v_[i] + xsph[i]));  // prescribed particles follow v exactly
-    if (!x_[i].allFinite()) throw NumericalError("sph solid: non-finite particle position");
+    finite = finite && x_[i].allFinite();
   }
+  if (!finite) throw NumericalError("sph solid: non-finite particle position");
   accelerations();
   if (tool_ && contact_.model == ContactModel::penalty) penalty_contact(dt);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
   time_ += dt;
   if (tool_ && contact_.model == ContactModel::velocity) apply_contact(dt);

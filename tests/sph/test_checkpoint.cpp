@@ -120,3 +120,20 @@ BOOST_AUTO_TEST_CASE(checkpoint_of_another_run_or_damaged_is_ignored) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(checkpoint_io)
+
+// A checkpoint that cannot be written (its directory is a file) leaves the run going, with a note.
+BOOST_AUTO_TEST_CASE(unwritable_checkpoint_does_not_stop_the_run) {
+  const CuttingSetup c = small_cut();
+  const std::string blocker = checkpoint_path("not_a_directory");
+  std::ofstream(blocker) << "x";
+  CheckpointScope scope(CheckpointSpec{blocker + "/run.ckpt", "run C", 0.0, false});
+  const auto r = run_cutting(c);
+  BOOST_TEST(r.checkpoints_written == 0);
+  BOOST_TEST(!r.checkpoint_error.empty());
+  BOOST_TEST(r.steps > 256u);
+  std::filesystem::remove(blocker);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

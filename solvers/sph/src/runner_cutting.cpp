@@ -325,16 +325,20 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
                                        std::to_string(s.steps()));
     }
     if (ck_clock.due(s.steps()) && s.time() < t_end) {
-      write_checkpoint(*ck, [&](BinaryWriter& w) {
-        s.save_state(w);
-        loop_state([&](double& d) { w.f64(d); }, [&](std::vector<double>& v) { w.vec(v); });
-        w.u64(static_cast<std::uint64_t>(rake_avg_n));
-        w.u64(static_cast<std::uint64_t>(snap_taken));
-        w.u64(r.snapshots.size());
-        for (const auto& sn : r.snapshots) write_snapshot(w, sn);
-      });
+      try {  // a checkpoint that cannot be written must not end the run it is there to protect
+        write_checkpoint(*ck, [&](BinaryWriter& w) {
+          s.save_state(w);
+          loop_state([&](double& d) { w.f64(d); }, [&](std::vector<double>& v) { w.vec(v); });
+          w.u64(static_cast<std::uint64_t>(rake_avg_n));
+          w.u64(static_cast<std::uint64_t>(snap_taken));
+          w.u64(r.snapshots.size());
+          for (const auto& sn : r.snapshots) write_snapshot(w, sn);
+        });
+        ++r.checkpoints_written;
+      } catch (const std::exception& e) {
+        r.checkpoint_error = e.what();
+      }
       ck_clock.written();
-      ++r.checkpoints_written;
       if (ck->stop_after_write) throw CheckpointStop("sph_cutting: stopped after a checkpoint at step " + std::to_string(s.steps()));
     }
   }
@@ -515,6 +519,8 @@ SolverSpec detail::cutting_spec() {
     c.history_window = c.cut_distance / c.speed / 200.0;
     const auto r = run_cutting(c, progress);
     RunOutput out;
+    if (!r.checkpoint_error.empty())
+      out.notes.push_back("sph_cutting: a checkpoint could not be written (" + r.checkpoint_error + "); the run went on");
     if (r.resumed_from_step > 0)
       out.notes.push_back("sph_cutting: resumed from a checkpoint at step " + std::to_string(r.resumed_from_step) +
                           " (the result equals an uninterrupted run with the same thread count)");

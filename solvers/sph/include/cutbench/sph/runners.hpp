@@ -1,6 +1,7 @@
 #pragma once
 // Case runners of the SPH solver, registered with the framework as SolverSpecs.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cutbench/common/solver.hpp"
@@ -101,6 +102,7 @@ struct CuttingResult {
   Snapshot tool_snapshot;          // final tool particles (world frame) with T
   std::size_t resumed_from_step = 0;  // > 0: the run resumed from a checkpoint written at that step
   int checkpoints_written = 0;
+  std::string checkpoint_error;  // non-empty: the last checkpoint that could not be written, and why
 };
 
 // Peaks of a profile f(s) by hysteresis: a peak counts when f rose by more than rel_threshold x

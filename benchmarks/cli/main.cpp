@@ -352,7 +352,7 @@ int main(int argc, char** argv) {
   double checkpoint_minutes = 10.0;
   run->add_option("--checkpoint-minutes", checkpoint_minutes,
                   "With --run-cache: minutes of wall time between two checkpoints of a solver run that supports "
-                  "them (SPH cutting); an interrupted run resumes from its last checkpoint (default 10)");
+                  "them (SPH and EFG cutting); an interrupted run resumes from its last checkpoint (default 10)");
   run->add_flag("--ctest", ctest_mode, "Exit 77 (skip) when every selected case is NOT IMPLEMENTED");
   run->add_flag("--strict", strict, "Known failures fail the run too");
 

@@ -1,10 +1,14 @@
 // Progressive failure per Gauss point with the analytic library's criteria (per-mode damage,
 // sudden irreversible degradation), and the rigid-tool central-difference contact of Eqs 39-43:
-// contact timing, Coulomb slip F_t = mu F_n, stick, momentum balance of the reported forces.
+// contact timing, Coulomb slip F_t = mu F_n, stick, momentum balance of the reported forces; and
+// checkpoint/resume of the cutting loop (bit for bit).
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
 
+#include "cutbench/common/checkpoint.hpp"
 #include "cutbench/efg/cutting.hpp"
 #include "cutbench/efg/explicit.hpp"
 
@@ -452,6 +456,128 @@ BOOST_AUTO_TEST_CASE(tool_engages_at_gap_over_speed) {
   BOOST_TEST(r.Fc_mean > 0.0);
   BOOST_TEST(std::abs(r.Ft_mean) < r.Fc_mean);
   BOOST_TEST(r.fibre_damaged + r.matrix_damaged > 0u);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+// Checkpoint and resume of the cutting loop (cutbench run --run-cache): a run stopped after every
+// checkpoint and resumed each time equals the uninterrupted run bit for bit, through contact,
+// failure, erosion, the visibility cut line that grows during the run, chip completion and the
+// damage snapshots; a checkpoint of another run is ignored.
+BOOST_AUTO_TEST_SUITE(efg_checkpoint)
+
+namespace {
+CuttingSetup checkpoint_cut() {
+  CuttingSetup s;  // the kahwash2018 quick mesh at 30 deg, LaRC02: to chip completion
+  s.lamina = gfrp_lamina();
+  s.theta = 30.0 * kPi / 180.0;
+  s.spacing = 0.0625e-3;
+  s.work_length = 1.0e-3;
+  s.work_height = 0.5e-3;
+  s.time_scale = 200.0;
+  s.travel = 0.15e-3;
+  s.snapshots = 3;
+  return s;
+}
+
+std::string checkpoint_file(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "cutbench_efg_checkpoint";
+  std::filesystem::create_directories(dir);
+  const auto p = dir / name;
+  std::filesystem::remove(p);
+  return p.string();
+}
+}  // namespace
+
+namespace {
+CuttingResult require_resume_equals_uninterrupted(const CuttingSetup& s, const std::string& name) {
+  const CuttingResult ref = run_cutting(s);
+  const cutbench::CheckpointSpec spec{checkpoint_file(name + ".ckpt"), "efg test run", 0.0, true};
+  CuttingResult r;
+  int interruptions = 0;
+  for (;;) {
+    cutbench::CheckpointScope scope(spec);
+    try {
+      r = run_cutting(s);
+      break;
+    } catch (const cutbench::CheckpointStop&) {
+      ++interruptions;
+    }
+    BOOST_REQUIRE(interruptions < 100000);
+  }
+  BOOST_TEST_MESSAGE("efg checkpoint test " << name << ": " << ref.steps << " steps, " << interruptions
+                                             << " interruptions, last resume at step " << r.resumed_from_step
+                                             << ", completion at " << ref.travel_complete * 1e6 << " um, "
+                                             << ref.eroded << " eroded Gauss points, " << ref.opaque_segments
+                                             << " opaque segments");
+  BOOST_TEST(interruptions == static_cast<int>((ref.steps - 1) / 256));
+  BOOST_TEST(r.resumed_from_step == 256L * interruptions);
+  BOOST_TEST(r.steps == ref.steps);
+  BOOST_TEST(r.t == ref.t, boost::test_tools::per_element());
+  BOOST_TEST(r.travel == ref.travel, boost::test_tools::per_element());
+  BOOST_TEST(r.Fc == ref.Fc, boost::test_tools::per_element());
+  BOOST_TEST(r.Ft == ref.Ft, boost::test_tools::per_element());
+  BOOST_TEST(r.dt == ref.dt, boost::test_tools::per_element());
+  BOOST_TEST(r.Fc_mean == ref.Fc_mean);
+  BOOST_TEST(r.Ft_mean == ref.Ft_mean);
+  BOOST_TEST(r.Fc_peak == ref.Fc_peak);
+  BOOST_TEST(r.dt_min == ref.dt_min);
+  BOOST_TEST(r.t_contact == ref.t_contact);
+  BOOST_TEST(r.t_complete == ref.t_complete);
+  BOOST_TEST(r.travel_complete == ref.travel_complete);
+  BOOST_TEST(r.dt_drop_ratio == ref.dt_drop_ratio);
+  BOOST_TEST(r.travel_first_drop == ref.travel_first_drop);
+  BOOST_TEST(r.travel_path == ref.travel_path);
+  BOOST_TEST(r.travel_separated == ref.travel_separated);
+  BOOST_TEST(r.travel_first_failure == ref.travel_first_failure);
+  BOOST_TEST(r.Fc_first_failure == ref.Fc_first_failure);
+  BOOST_TEST(r.fibre_damaged == ref.fibre_damaged);
+  BOOST_TEST(r.matrix_damaged == ref.matrix_damaged);
+  BOOST_TEST(r.eroded == ref.eroded);
+  BOOST_TEST(r.released == ref.released);
+  BOOST_TEST(r.collapse_eroded == ref.collapse_eroded);
+  BOOST_TEST(r.chip_fibre == ref.chip_fibre);
+  BOOST_TEST(r.chip_matrix == ref.chip_matrix);
+  BOOST_TEST(r.opaque_segments == ref.opaque_segments);
+  BOOST_REQUIRE(r.snapshots.size() == ref.snapshots.size());
+  for (std::size_t k = 0; k < r.snapshots.size(); ++k) {
+    BOOST_TEST(r.snapshots[k].travel == ref.snapshots[k].travel);
+    BOOST_TEST(r.snapshots[k].x == ref.snapshots[k].x, boost::test_tools::per_element());
+    BOOST_TEST(r.snapshots[k].fibre == ref.snapshots[k].fibre, boost::test_tools::per_element());
+    BOOST_TEST(r.snapshots[k].matrix == ref.snapshots[k].matrix, boost::test_tools::per_element());
+  }
+  cutbench::remove_checkpoint(spec);
+  return ref;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(interrupted_after_every_checkpoint_equals_uninterrupted) {
+  // to chip completion: contact, failure, erosion, the drop detector and its guard, snapshots
+  const CuttingSetup complete = checkpoint_cut();
+  BOOST_TEST(require_resume_equals_uninterrupted(complete, "completion").t_complete > 0.0);
+  // detector off, 0.08 mm of travel: the cut line grows by opaque segments after checkpoints, so
+  // the resumed shape functions must see them (rebuilt from the stored segments)
+  CuttingSetup longer = checkpoint_cut();
+  longer.drop = 0.0;
+  longer.travel = 0.08e-3;
+  longer.snapshots = 0;
+  BOOST_TEST(require_resume_equals_uninterrupted(longer, "cut_line").opaque_segments >= 4u);  // notch corner (2) + cut line
+}
+
+BOOST_AUTO_TEST_CASE(checkpoint_of_another_run_is_ignored) {
+  CuttingSetup s = checkpoint_cut();
+  s.travel = 0.02e-3;
+  const std::string path = checkpoint_file("other.ckpt");
+  {
+    cutbench::CheckpointScope scope(cutbench::CheckpointSpec{path, "run A", 0.0, true});
+    BOOST_CHECK_THROW(run_cutting(s), cutbench::CheckpointStop);
+  }
+  BOOST_REQUIRE(std::filesystem::exists(path));
+  cutbench::CheckpointScope scope(cutbench::CheckpointSpec{path, "run B", 1e9, false});
+  const CuttingResult r = run_cutting(s);
+  BOOST_TEST(r.resumed_from_step == 0L);
+  BOOST_TEST(r.steps > 256L);
+  std::filesystem::remove(path);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
 
 namespace cutbench::efg {
@@ -82,6 +83,31 @@ bool DropDetector::update(double dt, bool collapse_event, bool guard, double tra
   mean_ += (dt - mean_) / window_;
   return fire;
 }
+
+void DropDetector::save(BinaryWriter& w) const {
+  for (double d : {mean_, first_drop_, ratio_}) w.f64(d);
+}
+
+void DropDetector::load(BinaryReader& r) {
+  mean_ = r.f64();
+  first_drop_ = r.f64();
+  ratio_ = r.f64();
+}
+
+namespace {
+void write_cutting_snapshot(BinaryWriter& w, const CuttingSnapshot& sn) {
+  w.f64(sn.t);
+  w.f64(sn.travel);
+  for (const auto* v : {&sn.x, &sn.y, &sn.fibre, &sn.matrix}) w.vec(*v);
+}
+CuttingSnapshot read_cutting_snapshot(BinaryReader& r) {
+  CuttingSnapshot sn;
+  sn.t = r.f64();
+  sn.travel = r.f64();
+  for (auto* v : {&sn.x, &sn.y, &sn.fibre, &sn.matrix}) *v = r.vec();
+  return sn;
+}
+}  // namespace
 
 CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double)>& progress) {
   if (!(s.depth > 0.0)) throw InputError("depth", "must be > 0");
@@ -195,6 +221,28 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   bool path = false, sep = false;
   std::size_t ncoll_prev = 0;
   DropDetector detector(s.drop, s.drop_window, r.dt_initial);
+  // Checkpoints (cutbench run --run-cache): the solver state and every accumulator of this loop.
+  const CheckpointSpec* ck = active_checkpoint();
+  CheckpointClock ck_clock(ck);
+  auto loop_state = [&](auto&& f64, auto&& vec) {
+    for (double* p : {&acc.x(), &acc.y(), &acc_all.x(), &acc_all.y(), &tacc, &tacc_all, &cut_tip, &next_snap,
+                      &r.t_contact, &r.dt_min, &r.Fc_peak, &r.travel_first_failure, &r.Fc_first_failure,
+                      &r.travel_path, &r.travel_separated})
+      f64(*p);
+    for (std::vector<double>* v : {&r.t, &r.travel, &r.Fc, &r.Ft, &r.dt}) vec(*v);
+  };
+  if (ck && read_checkpoint(*ck, [&](BinaryReader& rd) {
+        solver.load_state(rd);
+        detector.load(rd);
+        loop_state([&](double& x) { x = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
+        nacc = static_cast<int>(rd.u64());
+        path = rd.u64() != 0;
+        sep = rd.u64() != 0;
+        ncoll_prev = static_cast<std::size_t>(rd.u64());
+        cand.clear();
+        for (auto k = rd.u64(); k > 0; --k) cand.push_back(read_cutting_snapshot(rd));
+      }))
+    r.resumed_from_step = solver.steps();
   while (solver.time() < t_end) {
     const double dt = solver.step();
     r.dt_min = std::min(r.dt_min, dt);
@@ -276,6 +324,26 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
     }
     if (r.t_complete >= 0.0) break;
     if (dt < 1e-3 * r.dt_initial) break;  // collapsed nodes: run broken
+    if (ck_clock.due(static_cast<std::size_t>(solver.steps())) && solver.time() < t_end) {
+      try {  // a checkpoint that cannot be written must not end the run it is there to protect
+        write_checkpoint(*ck, [&](BinaryWriter& w) {
+          solver.save_state(w);
+          detector.save(w);
+          loop_state([&](double& x) { w.f64(x); }, [&](std::vector<double>& v) { w.vec(v); });
+          for (std::uint64_t u : {static_cast<std::uint64_t>(nacc), static_cast<std::uint64_t>(path),
+                                  static_cast<std::uint64_t>(sep), static_cast<std::uint64_t>(ncoll_prev)})
+            w.u64(u);
+          w.u64(cand.size());
+          for (const auto& sn : cand) write_cutting_snapshot(w, sn);
+        });
+        ++r.checkpoints_written;
+      } catch (const std::exception& e) {
+        r.checkpoint_error = e.what();
+      }
+      ck_clock.written();
+      if (ck->stop_after_write)
+        throw CheckpointStop("efg_cutting: stopped after a checkpoint at step " + std::to_string(solver.steps()));
+    }
   }
   r.steps = solver.steps();
   r.travel_first_drop = detector.first_drop();
@@ -318,6 +386,7 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   }
   r.released = solver.released_count();
   r.collapse_eroded = solver.collapse_eroded_count();
+  r.opaque_segments = solver.opaque_segments().size();
   return r;
 }
 

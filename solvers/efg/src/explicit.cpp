@@ -483,6 +483,95 @@ Vec2 ExplicitEFG::gauss_position(std::size_t g) const {
   return xg;
 }
 
+namespace {
+// Gauss-point state in a checkpoint (bytewise record).
+struct GPState {
+  Mat2 Fr, F;
+  Eigen::Vector3d E, S;
+  Eigen::Matrix3d Qd;
+  Vec2 xr;
+  double Vr;
+  double damage[3];
+  char compressive[2];
+  char eroded;
+};
+constexpr std::uint64_t kStateVersion = 1;
+}  // namespace
+
+void ExplicitEFG::save_state(BinaryWriter& w) const {
+  w.u64(kStateVersion);
+  w.u64(x_.size());
+  w.u64(gp_.size());
+  w.pods(x_);
+  w.pods(v_);
+  w.pods(a_);
+  w.pods(fint_);
+  w.pods(xr_);
+  w.pods(active_);
+  std::vector<GPState> gs(gp_.size());
+  for (std::size_t g = 0; g < gp_.size(); ++g) {
+    const GP& q = gp_[g];
+    GPState& o = gs[g];
+    o = GPState{q.Fr, q.F, q.E, q.S, q.Qd, q.xr, q.Vr, {q.damage[0], q.damage[1], q.damage[2]},
+                {q.compressive[0], q.compressive[1]}, static_cast<char>(q.eroded)};
+  }
+  w.pods(gs);
+  w.pods(opaque_);
+  for (std::uint64_t u : {static_cast<std::uint64_t>(nreleased_), static_cast<std::uint64_t>(neroded_),
+                          static_cast<std::uint64_t>(ncollapse_), static_cast<std::uint64_t>(nstep_),
+                          static_cast<std::uint64_t>(ncontact_), static_cast<std::uint64_t>(nstick_),
+                          static_cast<std::uint64_t>(erosion_changed_)})
+    w.u64(u);
+  for (double d : {t_, tool_force_.x(), tool_force_.y()}) w.f64(d);
+}
+
+void ExplicitEFG::load_state(BinaryReader& r) {
+  if (r.u64() != kStateVersion) throw NumericalError("efg checkpoint: unknown state version");
+  const std::size_t n = x_.size(), ng = gp_.size();
+  if (r.u64() != n || r.u64() != ng) throw NumericalError("efg checkpoint: node or Gauss point count differs from the setup");
+  auto sized = [](auto v, std::size_t m) {
+    if (v.size() != m) throw NumericalError("efg checkpoint: array size differs from the setup");
+    return v;
+  };
+  x_ = sized(r.pods<Vec2>(), n);
+  v_ = sized(r.pods<Vec2>(), n);
+  a_ = sized(r.pods<Vec2>(), n);
+  fint_ = sized(r.pods<Vec2>(), n);
+  xr_ = sized(r.pods<Vec2>(), n);
+  active_ = sized(r.pods<char>(), n);
+  const std::vector<GPState> gs = sized(r.pods<GPState>(), ng);
+  for (std::size_t g = 0; g < ng; ++g) {
+    GP& q = gp_[g];
+    const GPState& o = gs[g];
+    q.Fr = o.Fr;
+    q.F = o.F;
+    q.E = o.E;
+    q.S = o.S;
+    q.Qd = o.Qd;
+    q.xr = o.xr;
+    q.Vr = o.Vr;
+    q.damage = {o.damage[0], o.damage[1], o.damage[2]};
+    q.compressive = {o.compressive[0], o.compressive[1]};
+    q.eroded = o.eroded != 0;
+  }
+  opaque_ = r.pods<Segment>();
+  nreleased_ = static_cast<std::size_t>(r.u64());
+  neroded_ = static_cast<std::size_t>(r.u64());
+  ncollapse_ = static_cast<std::size_t>(r.u64());
+  nstep_ = static_cast<long>(r.u64());
+  ncontact_ = static_cast<int>(r.u64());
+  nstick_ = static_cast<int>(r.u64());
+  erosion_changed_ = r.u64() != 0;
+  t_ = r.f64();
+  tool_force_.x() = r.f64();
+  tool_force_.y() = r.f64();
+  std::vector<Vec2> pts(ng);
+  for (std::size_t g = 0; g < ng; ++g) pts[g] = gp_[g].xr;
+  auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
+  for (std::size_t g = 0; g < ng; ++g) gp_[g].sd = std::move(sf[g]);
+  node_gp_dirty_ = true;
+}
+
 double ExplicitEFG::kinetic_energy() const {
   double k = 0.0;
   for (std::size_t I = 0; I < x_.size(); ++I) k += 0.5 * mass_[I] * v_[I].squaredNorm();

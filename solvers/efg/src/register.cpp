@@ -219,7 +219,7 @@ void register_solvers(SolverRegistry& registry) {
                  {"nodes", Dim::dimensionless, "nodes"},
                  {"gauss_points", Dim::dimensionless, "Gauss points"},
                  {"steps", Dim::dimensionless, "time steps"},
-                 {"node_steps_per_s", Dim::dimensionless, "throughput: nodes x steps / wall time (1/s)"},
+                 {"node_steps_per_s", Dim::dimensionless, "throughput: nodes x steps / wall time (1/s; after a resume, the steps since the resume)"},
                  {"E1_used", Dim::stress, "E1 used"},
                  {"E2_used", Dim::stress, "E2 used"},
                  {"nu12_used", Dim::dimensionless, "nu12 used"},
@@ -279,6 +279,12 @@ void register_solvers(SolverRegistry& registry) {
     });
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     RunOutput out;
+    if (!r.checkpoint_error.empty())
+      out.notes.push_back("efg_cutting: a checkpoint could not be written (" + r.checkpoint_error + "); the run went on");
+    if (r.resumed_from_step > 0)
+      out.notes.push_back("efg_cutting: resumed from a checkpoint at step " + std::to_string(r.resumed_from_step) +
+                          " (the result equals an uninterrupted run with the same thread count; node_steps_per_s "
+                          "counts the steps since the resume)");
     Table t;
     t.name = "forces";
     t.add("t", "s", r.t);
@@ -325,7 +331,7 @@ void register_solvers(SolverRegistry& registry) {
                    {"nodes", static_cast<double>(r.nodes)},
                    {"gauss_points", ng},
                    {"steps", static_cast<double>(r.steps)},
-                   {"node_steps_per_s", static_cast<double>(r.nodes) * static_cast<double>(r.steps) / wall},
+                   {"node_steps_per_s", static_cast<double>(r.nodes) * static_cast<double>(r.steps - r.resumed_from_step) / wall},
                    {"E1_used", m.E1},
                    {"E2_used", m.E2},
                    {"nu12_used", m.nu12},

@@ -94,12 +94,18 @@ struct CuttingResult {
   double hx = 0.0, hy = 0.0, y_edge = 0.0;
   std::size_t fibre_damaged = 0, matrix_damaged = 0, interface_damaged = 0, gauss = 0;
   std::size_t eroded = 0, released = 0, collapse_eroded = 0;
+  std::size_t opaque_segments = 0;     // visibility segments at the end (notch corner + cut line)
   // Damage in the chip: Gauss points above the cut line between the rake face at the start and
   // the fibre line through the tool edge at the end of the run (reference configuration).
   std::size_t chip_gauss = 0, chip_fibre = 0, chip_matrix = 0;
   // Damage below the cut line (machined surface), within one depth of cut.
   std::size_t sub_gauss = 0, sub_fibre = 0, sub_matrix = 0;
   std::vector<CuttingSnapshot> snapshots;
+  // Checkpoints (cutbench run --run-cache): the step a resumed run started from (0: from the
+  // beginning), how many were written, and why one could not be written (the run goes on).
+  long resumed_from_step = 0;
+  int checkpoints_written = 0;
+  std::string checkpoint_error;
 };
 
 // Edge-to-surface path search over Gauss points in the reference configuration (the chip-completion
@@ -133,6 +139,8 @@ public:
   bool update(double dt, bool collapse_event, bool guard, double travel, bool armed = true);
   double first_drop() const { return first_drop_; }
   double ratio() const { return ratio_; }
+  void save(BinaryWriter& w) const;
+  void load(BinaryReader& r);
 
 private:
   double drop_;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "cutbench/analytic/composite_failure.hpp"
+#include "cutbench/common/binary_io.hpp"
 
 #include "cutbench/efg/discretisation.hpp"
 #include "cutbench/efg/material.hpp"
@@ -197,6 +198,14 @@ public:
   double kinetic_energy() const;
   double strain_energy() const;
   const Orthotropic& material() const { return mat_; }
+  // Checkpoints of long runs: the state between two steps (nodes, Gauss points, released nodes,
+  // counters, opaque segments, last contact force). load_state expects an object built with the
+  // same discretisation, material, options, tool and boundary conditions; the run then continues
+  // bit for bit as if it had not been interrupted. The shape functions are rebuilt from the stored
+  // opaque segments: a Gauss point's functions depend only on the segments that cross its support,
+  // so one rebuild with all of them equals the incremental updates of add_opaque_segment.
+  void save_state(BinaryWriter& w) const;
+  void load_state(BinaryReader& r);
 
 private:
   struct GP {

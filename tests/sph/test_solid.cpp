@@ -3,7 +3,9 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <iostream>
+#include <limits>
 
+#include "cutbench/common/errors.hpp"
 #include "cutbench/sph/lattice.hpp"
 #include "cutbench/sph/solid.hpp"
 
@@ -131,6 +133,27 @@ BOOST_AUTO_TEST_CASE(adiabatic_plastic_heating) {
   BOOST_TEST(tmax - 300.0 == dT, tt::tolerance(2e-3));
   const double q = von_mises(s.deviator()[0]);
   BOOST_TEST(q == jc.flow_stress(ep, 0.0, s.temperature()[0]), tt::tolerance(1e-9));
+}
+
+// A non-finite temperature must stop the run with NumericalError at the next conduction update
+// (it would otherwise turn the J-C flow stress into NaN, switch off yielding and let the run finish
+// with garbage forces: the session-9 mu = 0.65 full-tier series).
+BOOST_AUTO_TEST_CASE(non_finite_temperature_stops_the_run) {
+  const int n = 8;
+  const double dx = 1e-5;
+  auto x = rectangle_lattice(n, n, 0.0, (n - 1) * dx, 0.0, (n - 1) * dx);
+  SolidMaterial mat;
+  mat.plastic = true;
+  SolidSph s(x, dx, mat, SolidOptions{});
+  s.enable_thermal(ThermalOptions{}, std::vector<char>(x.size(), 0));
+  const double dt = s.stable_time_step();
+  for (int k = 0; k < 30; ++k) s.step(dt);  // finite state: no error
+  s.temperature()[27] = std::numeric_limits<double>::quiet_NaN();
+  BOOST_CHECK_THROW(
+      for (int k = 0; k < 30; ++k) s.step(dt), cutbench::NumericalError);
+  SolidSph v(x, dx, mat, SolidOptions{});
+  v.velocity()[5] = Vec2(std::numeric_limits<double>::infinity(), 0.0);
+  BOOST_CHECK_THROW(v.stable_time_step(), cutbench::NumericalError);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

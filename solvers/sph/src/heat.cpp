@@ -40,7 +40,7 @@ void HeatConduction::setup() {
   const ParticleView view{x_, V_, nl_, kernel_};
   surface_ = detect_free_surface(view, opt_.surface);
   if (opt_.scheme == HeatScheme::fmfs) fmfs_.update(view);
-  heat_masks(nl_, surface_, fixed_, opt_.brookshaw_band, use_fmfs_, loss_);
+  heat_masks(nl_, surface_, fixed_, opt_.brookshaw_band, opt_.surface.lambda_interior, use_fmfs_, loss_);
   ready_ = true;
   apply_dirichlet();
 }
@@ -63,13 +63,13 @@ double surface_flux(const HeatBoundary& bc, double T) {
 double HeatConduction::surface_flux(double T) const { return sph::surface_flux(bc_, T); }
 
 void heat_masks(const NeighbourList& nl, const SurfaceDetection& surface, const std::vector<char>& fixed,
-                bool band, std::vector<char>& use_fmfs, std::vector<char>& loss) {
+                bool band, double lambda_interior, std::vector<char>& use_fmfs, std::vector<char>& loss) {
   const std::size_t n = nl.size();
   loss.assign(n, 0);
   use_fmfs.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     loss[i] = surface.surface[i] && !fixed[i];
-    use_fmfs[i] = !surface.surface[i];
+    use_fmfs[i] = !surface.surface[i] && surface.lambda[i] > lambda_interior;
     if (band)
       for (std::size_t k = nl.begin(i); k < nl.end(i); ++k)
         if (surface.surface[nl.index[k]]) use_fmfs[i] = 0;

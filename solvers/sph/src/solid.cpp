@@ -75,7 +75,7 @@ void SolidSph::set_tool_thermal(HeatMaterial tool_heat, double depth) {
   tool_nl_ = build_neighbours(tool_x_, kernel_.support());
   const ParticleView view{tool_x_, tool_V_, tool_nl_, kernel_};
   const SurfaceDetection s = detect_free_surface(view, th_.surface);
-  heat_masks(tool_nl_, s, tool_fixed_, th_.brookshaw_band, tool_use_fmfs_, tool_loss_);
+  heat_masks(tool_nl_, s, tool_fixed_, th_.brookshaw_band, th_.surface.lambda_interior, tool_use_fmfs_, tool_loss_);
   tool_fmfs_.update(view);
   tool_thermal_ = true;
   if (contact_.tool_heat_share >= 0.0) {
@@ -152,7 +152,7 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   const ParticleView view{x_, vol, nl_, kernel_, &heat_pair_r_, &heat_pair_dwdr_};
   surface_ = detect_free_surface(view, th_.surface);
   std::vector<char> use_fmfs, loss;
-  heat_masks(nl_, surface_, t_fixed_, th_.brookshaw_band, use_fmfs, loss);
+  heat_masks(nl_, surface_, t_fixed_, th_.brookshaw_band, th_.surface.lambda_interior, use_fmfs, loss);
   const FmfsLaplacian* fm = nullptr;
   if (th_.scheme == HeatScheme::fmfs) {
     fmfs_.update(view, &use_fmfs);  // FMFS geometry only where FMFS is used
@@ -223,6 +223,17 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
     for (std::size_t i = 0; i < n; ++i)
       if (!t_fixed_[i]) T_[i] += dt_th * rate[i];
   }
+  // A non-finite temperature would silently switch off J-C yielding (NaN flow stress) and the run
+  // would go on with garbage: stop it here with the place and time.
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(T_[i]))
+      throw NumericalError("sph: non-finite temperature at workpiece particle " + std::to_string(i) + " (x " +
+                           std::to_string(x_[i].x()) + " m, y " + std::to_string(x_[i].y()) + " m) at t = " +
+                           std::to_string(time_) + " s, step " + std::to_string(steps_));
+  for (std::size_t i = 0; i < tool_T_.size(); ++i)
+    if (!std::isfinite(tool_T_[i]))
+      throw NumericalError("sph: non-finite temperature at tool particle " + std::to_string(i) + " at t = " +
+                           std::to_string(time_) + " s, step " + std::to_string(steps_));
 }
 
 std::vector<double> SolidSph::pressure() const {
@@ -233,7 +244,15 @@ std::vector<double> SolidSph::pressure() const {
 
 double SolidSph::stable_time_step() const {
   double vmax = 0.0;
-  for (const auto& v : v_) vmax = std::max(vmax, v.norm());
+  bool finite = true;
+  for (const auto& v : v_) {
+    const double n = v.norm();
+    finite = finite && std::isfinite(n);
+    vmax = std::max(vmax, n);
+  }
+  if (!finite)
+    throw NumericalError("sph: non-finite particle velocity at t = " + std::to_string(time_) + " s, step " +
+                         std::to_string(steps_));
   double dt = opt_.cfl * kernel_.h() / (mat_.p_wave_speed() + vmax);
   if (thermal_) dt = std::min(dt, 0.1 * kernel_.h() * kernel_.h() / th_.heat.diffusivity());
   return dt;

@@ -58,10 +58,14 @@ double heat_rates(const ParticleView& p, const std::vector<double>& T, const Fmf
 // fixed_inflow (if given) receives sum over fixed particles of k lap(T)_i V_i (W/m): the heat that
 // conduction would carry into the Dirichlet particles (their temperature is held).
 
-// Which particles use FMFS (not surface; with `band`, also not next to a surface particle) and
-// which lose heat (surface and not fixed).
+// Which particles use FMFS and which lose heat (surface and not fixed). FMFS needs an interior
+// particle in the paper's sense, lambda_i > lambda_interior (Afrasiabi et al. 2021, Sec. 4.2: "FMFS
+// is computed for interior particles (lambda > 0.75) ... the singularity of correction matrices in
+// FMFS can be avoided"), that is not on the detected surface; with `band`, also not next to a
+// surface particle. Particles with lambda <= lambda_interior that the scan test keeps off the
+// surface (small voids, sheared gaps) conduct with Brookshaw and lose no heat.
 void heat_masks(const NeighbourList& nl, const SurfaceDetection& surface, const std::vector<char>& fixed,
-                bool band, std::vector<char>& use_fmfs, std::vector<char>& loss);
+                bool band, double lambda_interior, std::vector<char>& use_fmfs, std::vector<char>& loss);
 
 double surface_flux(const HeatBoundary& bc, double T);
 

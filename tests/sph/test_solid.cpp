@@ -90,6 +90,13 @@ BOOST_AUTO_TEST_CASE(bar_wave_speed) {
 
 BOOST_AUTO_TEST_SUITE_END()
 
+namespace {
+// n x n particles of spacing dx from the origin
+std::vector<Vec2> square_lattice(int n, double dx) {
+  return rectangle_lattice(n, n, 0.0, (n - 1) * dx, 0.0, (n - 1) * dx);
+}
+}  // namespace
+
 BOOST_AUTO_TEST_SUITE(thermo_mechanical)
 
 // Homogeneous pure shear imposed on every particle; J-C without rate and thermal terms, no surface
@@ -98,7 +105,7 @@ BOOST_AUTO_TEST_SUITE(thermo_mechanical)
 BOOST_AUTO_TEST_CASE(adiabatic_plastic_heating) {
   const int n = 16;
   const double dx = 1e-5;
-  auto x = rectangle_lattice(n, n, 0.0, (n - 1) * dx, 0.0, (n - 1) * dx);
+  const auto x = square_lattice(n, dx);
   SolidMaterial mat;
   mat.plastic = true;
   mat.jc.C = 0.0;
@@ -139,9 +146,8 @@ BOOST_AUTO_TEST_CASE(adiabatic_plastic_heating) {
 // (it would otherwise turn the J-C flow stress into NaN, switch off yielding and let the run finish
 // with garbage forces: the session-9 mu = 0.65 full-tier series).
 BOOST_AUTO_TEST_CASE(non_finite_temperature_stops_the_run) {
-  const int n = 8;
   const double dx = 1e-5;
-  auto x = rectangle_lattice(n, n, 0.0, (n - 1) * dx, 0.0, (n - 1) * dx);
+  const auto x = square_lattice(8, dx);
   SolidMaterial mat;
   mat.plastic = true;
   SolidSph s(x, dx, mat, SolidOptions{});

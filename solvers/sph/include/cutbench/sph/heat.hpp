@@ -59,9 +59,9 @@ double heat_rates(const ParticleView& p, const std::vector<double>& T, const Fmf
 // conduction would carry into the Dirichlet particles (their temperature is held).
 
 // Which particles use FMFS and which lose heat (surface and not fixed). FMFS needs an interior
-// particle in the paper's sense, lambda_i > lambda_interior (Afrasiabi et al. 2021, Sec. 4.2: "FMFS
-// is computed for interior particles (lambda > 0.75) ... the singularity of correction matrices in
-// FMFS can be avoided"), that is not on the detected surface; with `band`, also not next to a
+// particle in the paper's sense, lambda_i > lambda_interior (Afrasiabi et al. 2021, Sec. 4.2: Fatehi's
+// Laplacian "is computed for interior particles (lambda > 0.75)", and "by doing so, the singularity
+// of correction matrices in FMFS can be avoided"), not on the detected surface; with `band`, also not next to a
 // surface particle. Particles with lambda <= lambda_interior that the scan test keeps off the
 // surface (small voids, sheared gaps) conduct with Brookshaw and lose no heat.
 void heat_masks(const NeighbourList& nl, const SurfaceDetection& surface, const std::vector<char>& fixed,

@@ -464,6 +464,37 @@ BOOST_AUTO_TEST_CASE(run_cache_round_trip) {
   BOOST_TEST(!load_run(path, key, back));
 }
 
+// Runs of the registered solvers are keyed by their method's source identity (not by the
+// executable or the git commit), so that stored runs stay valid across builds and machines.
+BOOST_AUTO_TEST_CASE(run_keys_use_the_solver_source_identity) {
+  const auto is_identity = [](const std::string& id) {
+    return id.size() == 64 && id.find_first_not_of("0123456789abcdef") == std::string::npos;
+  };
+  std::set<std::string> methods;
+  for (const auto& s : SolverRegistry::instance().all()) {
+    if (s.name.rfind("toy_", 0) == 0) continue;  // this file's own solvers
+    const std::string id = solver_identity(s.name);
+    BOOST_TEST_CONTEXT(s.name) {
+      BOOST_TEST(is_identity(id));
+      const std::string key = run_key(s.name, {{"a", 1.0}});
+      BOOST_TEST(key == s.name + "|source " + id + "|a=1");
+      BOOST_TEST(key.find(software_version()) == std::string::npos);
+    }
+    methods.insert(id);
+  }
+  // one identity per method: solvers of one library share it, libraries differ
+  if (SolverRegistry::instance().find("sph_cutting") && SolverRegistry::instance().find("sph_heat")) {
+    BOOST_TEST(solver_identity("sph_cutting") == solver_identity("sph_heat"));
+  }
+  if (SolverRegistry::instance().find("sph_cutting") && SolverRegistry::instance().find("efg_cutting")) {
+    BOOST_TEST(solver_identity("sph_cutting") != solver_identity("efg_cutting"));
+  }
+  // a solver without an identity falls back to the version and the executable's hash
+  BOOST_TEST(solver_identity("no_such_solver").empty());
+  const std::string fallback = run_key("no_such_solver", {});
+  BOOST_TEST(fallback.find("no_such_solver|" + software_version() + "|build ") == 0u);
+}
+
 BOOST_AUTO_TEST_CASE(run_cache_shares_and_resumes_solver_runs) {
   static int calls = 0;
   if (!SolverRegistry::instance().find("toy_counting_solver")) {

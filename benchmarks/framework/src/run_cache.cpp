@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -24,6 +25,7 @@ constexpr char kMagic[8] = {'C', 'B', 'R', 'U', 'N', '0', '0', '2'};
 
 std::string g_cache_dir;
 double g_checkpoint_interval = 600.0;
+std::map<std::string, std::string> g_identity;  // solver name -> source identity of its method
 
 }  // namespace
 
@@ -53,8 +55,17 @@ const std::string& build_identity() {
   return id;
 }
 
+void set_solver_identity(const std::string& solver, const std::string& identity) { g_identity[solver] = identity; }
+
+std::string solver_identity(const std::string& solver) {
+  const auto it = g_identity.find(solver);
+  return it == g_identity.end() ? std::string() : it->second;
+}
+
 std::string run_key(const std::string& solver, const Values& params) {
-  std::string key = solver + "|" + software_version() + "|build " + build_identity();
+  const std::string identity = solver_identity(solver);
+  std::string key = solver + "|" +
+                    (identity.empty() ? software_version() + "|build " + build_identity() : "source " + identity);
   char buf[64];
   for (const auto& [name, value] : params) {
     std::snprintf(buf, sizeof buf, "%.17g", value);

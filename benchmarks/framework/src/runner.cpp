@@ -35,21 +35,48 @@ void register_solvers(SolverRegistry& registry);
 }
 #endif
 
+// Source identities of the solver methods, generated at build time (cmake/source_identity.cmake).
+namespace cutbench::framework::detail {
+const char* source_identity_mpm();
+const char* source_identity_sph();
+const char* source_identity_limit();
+const char* source_identity_efg();
+}  // namespace cutbench::framework::detail
+
 namespace cutbench::framework {
+
+namespace {
+int max_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+// Registers one method's solvers and gives those it adds the method's source identity
+// (register_solvers is idempotent: a second call adds nothing and keeps the identities).
+void register_method(void (*reg)(SolverRegistry&), const char* identity) {
+  SolverRegistry& registry = SolverRegistry::instance();
+  const std::size_t before = registry.all().size();
+  reg(registry);
+  for (std::size_t k = before; k < registry.all().size(); ++k) set_solver_identity(registry.all()[k].name, identity);
+}
+}  // namespace
 
 void register_all() {
   analytic::register_models(ModelRegistry::instance());
 #ifdef CUTBENCH_HAVE_MPM
-  mpm::register_solvers(SolverRegistry::instance());
+  register_method(mpm::register_solvers, detail::source_identity_mpm());
 #endif
 #ifdef CUTBENCH_HAVE_SPH
-  sph::register_solvers(SolverRegistry::instance());
+  register_method(sph::register_solvers, detail::source_identity_sph());
 #endif
 #ifdef CUTBENCH_HAVE_LIMIT
-  limit::register_solvers(SolverRegistry::instance());
+  register_method(limit::register_solvers, detail::source_identity_limit());
 #endif
 #ifdef CUTBENCH_HAVE_EFG
-  efg::register_solvers(SolverRegistry::instance());
+  register_method(efg::register_solvers, detail::source_identity_efg());
 #endif
 }
 
@@ -143,10 +170,17 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
       } else {
         // solvers that support checkpoints resume from, and write, <run file>.ckpt
         const CheckpointSpec ck{cache_path.substr(0, cache_path.size() - 4) + ".ckpt", key, checkpoint_interval(), false};
+        const auto started = std::chrono::steady_clock::now();
         {
           CheckpointScope scope(ck);
           run = sv->run(params, inner);
         }
+        // provenance of a stored run, which later builds of the same solver sources may reuse
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        run.notes.push_back("run stored in the run cache: computed by cutbench " + software_version() + ", finished " +
+                            utc_now_iso() + ", " + std::to_string(max_threads()) + " thread(s), " +
+                            std::to_string(static_cast<long>(std::lround(wall))) +
+                            " s wall in its last process (a resumed run counts from its checkpoint)");
         try {
           save_run(cache_path, key, run);
           remove_checkpoint(ck);
@@ -205,9 +239,7 @@ CaseResult run_case(const CaseSpec& spec, const std::string& tier, const Progres
   r.case_id = spec.id;
   r.tier = tier;
   r.date = utc_now_iso();
-#ifdef _OPENMP
-  r.threads = omp_get_max_threads();
-#endif
+  r.threads = max_threads();
   const auto t0 = std::chrono::steady_clock::now();
   ReferenceCache refs;
   if (spec.implemented()) {

@@ -1,17 +1,27 @@
 #pragma once
 // Opt-in store of finished solver runs (`cutbench run --run-cache DIR`): a solver run is keyed by
-// the solver name, every validated parameter (17 significant digits), the software version and a
-// hash of the running executable (so any rebuild with changed code, committed or not, gives new
-// keys), so that an interrupted full tier resumes where it stopped and cases that need the same run
-// (e.g. one paper's figures drawn from the same simulation) compute it once. The key is stored in
-// the file and compared on load (a hash collision only costs a recompute); files are written to a
-// per-process temporary name and renamed.
+// the solver name, every validated parameter (17 significant digits) and the source identity of
+// the solver method that registered it (cmake/source_identity.cmake: a hash of the method's
+// sources, of solvers/common and, where linked, of analytic/, with the compiler, build type and
+// flags). So an interrupted full tier resumes where it stopped, cases that need the same run (one
+// paper's figures drawn from the same simulation) compute it once, and finished runs stay valid
+// for every build of the same solver sources, on any machine (`reports/full_tier/runs/` keeps the
+// full-tier runs in the repository); any change to those sources, committed or not, gives new
+// keys. A solver without a source identity (a test's toy solver) is keyed by the software version
+// and a hash of the running executable instead. The key is stored in the file and compared on
+// load (a hash collision only costs a recompute); files are written to a per-process temporary
+// name and renamed.
 #include <string>
 
 #include "cutbench/common/model.hpp"
 #include "cutbench/common/solver.hpp"
 
 namespace cutbench::framework {
+
+// Source identity of the method that registered `solver` (64 hex digits), set by register_all();
+// empty when unknown.
+void set_solver_identity(const std::string& solver, const std::string& identity);
+std::string solver_identity(const std::string& solver);
 
 // Key text and file name (<solver>-<16 hex digits>.run) of one solver run.
 std::string run_key(const std::string& solver, const Values& params);

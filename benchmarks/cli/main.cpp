@@ -1,4 +1,4 @@
-// cutbench — the command line: list, run, eval, bench, report.
+// cutbench — the command line: list, run, eval, bench, report, runs.
 // Exit codes: 0 all pass, 1 a check failed (or an internal error), 2 bad input (nothing written).
 #include <CLI/CLI.hpp>
 
@@ -306,6 +306,52 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
   return 0;
 }
 
+// The stored runs of a run-cache directory: which are usable by this build, with their parameters
+// (those that differ from the solver's defaults) and provenance. --check: exit 1 unless every
+// file is current (reports/full_tier/runs must not keep runs that no build of these sources uses).
+int cmd_runs(const std::string& dir, bool check, bool as_json) {
+  const auto stored = scan_run_store(dir);
+  json all = json::array();
+  std::size_t not_current = 0;
+  for (const auto& s : stored) {
+    std::string differing;
+    json params = json::object();
+    const SolverSpec* sv = SolverRegistry::instance().find(s.solver);
+    for (const auto& [name, value] : s.params) {
+      params[name] = value;
+      const ParamSpec* p = nullptr;
+      if (sv) {
+        for (const auto& q : sv->params) {
+          if (q.name == name) p = &q;
+        }
+      }
+      if (p && p->default_value && std::abs(value - *p->default_value) <= 1e-12 * std::abs(*p->default_value)) continue;
+      differing += (differing.empty() ? "" : " ") + name + "=" + fmt(value, 10);
+    }
+    if (s.state != "current") ++not_current;
+    all.push_back({{"file", s.file}, {"kind", s.kind}, {"solver", s.solver}, {"state", s.state},
+                   {"identity", s.identity}, {"params", params}, {"differing", differing},
+                   {"provenance", s.provenance}});
+    if (as_json) continue;
+    std::cout << s.file << "  " << s.kind << "  " << s.state << "\n";
+    if (!differing.empty()) std::cout << "  " << differing << "\n";
+    if (!s.provenance.empty()) std::cout << "  " << s.provenance << "\n";
+  }
+  if (as_json) {
+    std::cout << all.dump(2) << "\n";
+  } else {
+    std::cout << stored.size() << " stored file(s) in " << dir << ", " << stored.size() - not_current
+              << " current, " << not_current << " not usable by this build\n";
+  }
+  if (check && not_current > 0) {
+    std::cerr << "cutbench runs: " << not_current << " stored file(s) in " << dir
+              << " are not usable by this build (other solver sources or build settings): delete them, or "
+                 "re-run their cases (reports/full_tier/runs/README.md)\n";
+    return kExitFail;
+  }
+  return 0;
+}
+
 int cmd_report(const fs::path& results, const fs::path& out) {
   write_manifest(results);
   const std::string cmd = std::string(CUTBENCH_PYTHON) + " \"" +
@@ -347,8 +393,9 @@ int main(int argc, char** argv) {
   run->add_option("-j,--threads", threads, "OpenMP threads");
   std::string run_cache;
   run->add_option("--run-cache", run_cache,
-                  "Directory of finished solver runs, keyed by solver, parameters and software version: "
-                  "reuse them and store new ones (resume an interrupted full tier; share runs between cases)");
+                  "Directory of finished solver runs, keyed by solver, parameters and the solver's source identity: "
+                  "reuse them and store new ones (resume an interrupted full tier; share runs between cases; "
+                  "reports/full_tier/runs keeps the full-tier runs)");
   double checkpoint_minutes = 10.0;
   run->add_option("--checkpoint-minutes", checkpoint_minutes,
                   "With --run-cache: minutes of wall time between two checkpoints of a solver run that supports "
@@ -374,6 +421,13 @@ int main(int argc, char** argv) {
   bench->add_option("--repeat", bench_repeat, "Repetitions");
   bench->add_option("--out", bench_out, "Results directory (bench/<name>.json)");
   bench->add_option("-j,--threads", threads, "OpenMP threads");
+
+  std::string runs_dir = "reports/full_tier/runs";
+  bool runs_check = false, runs_json = false;
+  auto* runs = app.add_subcommand("runs", "Stored solver runs of a run-cache directory: usable by this build or not");
+  runs->add_option("dir", runs_dir, "Run-cache directory (default reports/full_tier/runs)");
+  runs->add_flag("--check", runs_check, "Exit 1 unless every stored file is usable by this build");
+  runs->add_flag("--json", runs_json, "JSON output");
 
   std::string report_results = "results", report_out = "report";
   auto* report = app.add_subcommand("report", "Static HTML report from the results directory");
@@ -404,6 +458,7 @@ int main(int argc, char** argv) {
     }
     if (*bench) return cmd_bench(bench_name, bench_args, bench_repeat, bench_out);
     if (*report) return cmd_report(report_results, report_out);
+    if (*runs) return cmd_runs(runs_dir, runs_check, runs_json);
   } catch (const InputError& e) {
     std::cerr << "cutbench: error: " << e.what() << "\n";
     return kExitBadInput;

@@ -5,8 +5,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 
+#include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/framework/case.hpp"
 #include "cutbench/framework/reference.hpp"
@@ -493,6 +495,53 @@ BOOST_AUTO_TEST_CASE(run_keys_use_the_solver_source_identity) {
   BOOST_TEST(solver_identity("no_such_solver").empty());
   const std::string fallback = run_key("no_such_solver", {});
   BOOST_TEST(fallback.find("no_such_solver|" + software_version() + "|build ") == 0u);
+}
+
+// A run store is read without running anything: each file's solver, parameters and whether this
+// build can use it.
+BOOST_AUTO_TEST_CASE(run_store_scan_tells_current_from_stale) {
+  const std::string id(64, 'a');
+  set_solver_identity("toy_store_solver", id);
+  const fs::path dir = fs::temp_directory_path() / "cutbench_test_runstore";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  RunOutput run;
+  run.set_scalar("y", 2.0, "1");
+  run.notes = {"run stored in the run cache: computed by a test"};
+  const std::string current = run_key("toy_store_solver", {{"a", 1.5}, {"b", 2.0}});
+  BOOST_TEST(current == "toy_store_solver|source " + id + "|a=1.5|b=2");
+  save_run((dir / run_file_name("toy_store_solver", current)).string(), current, run);
+  const std::string stale = "toy_store_solver|source " + std::string(64, 'b') + "|a=3";
+  save_run((dir / "toy_store_solver-stale.run").string(), stale, run);
+  const std::string old = "toy_store_solver|0.1.0+abc|build 0123456789abcdef|a=3";
+  save_run((dir / "toy_store_solver-old.run").string(), old, run);
+  const std::string unknown = "no_such_solver|source " + id + "|a=3";
+  save_run((dir / "no_such_solver-x.run").string(), unknown, run);
+  write_checkpoint(CheckpointSpec{(dir / "toy_store_solver-y.ckpt").string(), current, 1.0, false},
+                   [](BinaryWriter& w) { w.f64(1.0); });
+  std::ofstream(dir / "garbage.run") << "not a run";
+  std::ofstream(dir / "README.md") << "ignored";
+  const auto stored = scan_run_store(dir.string());
+  std::map<std::string, StoredRun> by_file;
+  for (const auto& s : stored) by_file[s.file] = s;
+  BOOST_REQUIRE(stored.size() == 6u);
+  const StoredRun& c = by_file.at(run_file_name("toy_store_solver", current));
+  BOOST_TEST(c.state == "current");
+  BOOST_TEST(c.kind == "run");
+  BOOST_TEST(c.solver == "toy_store_solver");
+  BOOST_TEST(c.identity == id);
+  BOOST_TEST(c.params.at("a") == 1.5);
+  BOOST_TEST(c.params.at("b") == 2.0);
+  BOOST_TEST(c.provenance == "run stored in the run cache: computed by a test");
+  BOOST_TEST(by_file.at("toy_store_solver-stale.run").state == "stale");
+  BOOST_TEST(by_file.at("toy_store_solver-old.run").state == "executable-keyed");
+  BOOST_TEST(by_file.at("toy_store_solver-old.run").params.at("a") == 3.0);
+  BOOST_TEST(by_file.at("no_such_solver-x.run").state == "unknown solver");
+  BOOST_TEST(by_file.at("toy_store_solver-y.ckpt").state == "current");
+  BOOST_TEST(by_file.at("toy_store_solver-y.ckpt").kind == "checkpoint");
+  BOOST_TEST(by_file.at("garbage.run").state == "unreadable");
+  BOOST_CHECK_THROW(scan_run_store((dir / "absent").string()), InputError);
+  fs::remove_all(dir);
 }
 
 BOOST_AUTO_TEST_CASE(run_cache_shares_and_resumes_solver_runs) {

@@ -1,6 +1,7 @@
 #include "cutbench/framework/run_cache.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -136,6 +137,96 @@ bool load_run(const std::string& path, const std::string& key, RunOutput& run) {
   } catch (const std::exception&) {
     return false;
   }
+}
+
+namespace {
+// The magic and key at the start of a run file or a checkpoint ("" when neither).
+std::string stored_key(const std::string& path, std::string& kind) {
+  // the checkpoint format's magic (solvers/common/src/checkpoint.cpp)
+  static constexpr char kCheckpointMagic[8] = {'C', 'B', 'C', 'K', 'P', '0', '0', '1'};
+  std::ifstream i(path, std::ios::binary);
+  char magic[8];
+  if (!i.read(magic, sizeof magic)) return "";
+  if (std::equal(magic, magic + 8, kMagic)) {
+    kind = "run";
+  } else if (std::equal(magic, magic + 8, kCheckpointMagic)) {
+    kind = "checkpoint";
+  } else {
+    return "";
+  }
+  try {
+    BinaryReader r(i);
+    return r.str();
+  } catch (const std::exception&) {
+    return "";
+  }
+}
+
+// "solver|source <id>|a=1|b=2" (or "solver|<version>|build <hash>|...") into its parts.
+void parse_key(const std::string& key, StoredRun& s) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const auto bar = key.find('|', start);
+    parts.push_back(key.substr(start, bar == std::string::npos ? std::string::npos : bar - start));
+    if (bar == std::string::npos) break;
+    start = bar + 1;
+  }
+  s.solver = parts.front();
+  for (std::size_t k = 1; k < parts.size(); ++k) {
+    const std::string& p = parts[k];
+    if (p.rfind("source ", 0) == 0) {
+      s.identity = p.substr(7);
+      continue;
+    }
+    const auto eq = p.find('=');
+    if (eq == std::string::npos) continue;  // version or executable hash of an old key
+    s.params[p.substr(0, eq)] = std::strtod(p.c_str() + eq + 1, nullptr);
+  }
+}
+}  // namespace
+
+std::vector<StoredRun> scan_run_store(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw InputError("runs", "a directory of stored runs ('" + dir + "' is not one)");
+  std::vector<StoredRun> out;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string ext = e.path().extension().string();
+    if (!e.is_regular_file() || (ext != ".run" && ext != ".ckpt")) continue;
+    StoredRun s;
+    s.file = e.path().filename().string();
+    s.kind = ext == ".run" ? "run" : "checkpoint";
+    s.key = stored_key(e.path().string(), s.kind);
+    if (s.key.empty()) {
+      s.state = "unreadable";
+      out.push_back(std::move(s));
+      continue;
+    }
+    parse_key(s.key, s);
+    const std::string current = solver_identity(s.solver);
+    if (s.identity.empty()) {
+      s.state = "executable-keyed";
+    } else if (current.empty()) {
+      s.state = "unknown solver";
+    } else {
+      s.state = s.identity == current ? "current" : "stale";
+    }
+    if (s.kind == "run") {
+      RunOutput run;
+      if (!load_run(e.path().string(), s.key, run)) {
+        s.state = "unreadable";
+      } else {
+        for (const auto& n : run.notes) {
+          if (n.rfind("run stored in the run cache:", 0) == 0) s.provenance = n;
+        }
+      }
+    }
+    out.push_back(std::move(s));
+  }
+  if (ec) throw InputError("runs", "a readable directory ('" + dir + "': " + ec.message() + ")");
+  std::sort(out.begin(), out.end(), [](const StoredRun& a, const StoredRun& b) { return a.file < b.file; });
+  return out;
 }
 
 void set_run_cache_dir(const std::string& dir) {

@@ -12,6 +12,7 @@
 // load (a hash collision only costs a recompute); files are written to a per-process temporary
 // name and renamed.
 #include <string>
+#include <vector>
 
 #include "cutbench/common/model.hpp"
 #include "cutbench/common/solver.hpp"
@@ -31,6 +32,24 @@ std::string run_file_name(const std::string& solver, const std::string& key);
 void save_run(const std::string& path, const std::string& key, const RunOutput& run);
 // False when the file is absent, unreadable, truncated or stored under another key.
 bool load_run(const std::string& path, const std::string& key, RunOutput& run);
+
+// One file of a run store (a run-cache directory such as reports/full_tier/runs): a finished run
+// (`.run`) or the checkpoint of an unfinished one (`.ckpt`), read without running anything.
+struct StoredRun {
+  std::string file;        // file name in the directory
+  std::string kind;        // "run" or "checkpoint"
+  std::string key;         // as stored
+  std::string solver;      // the key's solver name
+  std::string identity;    // the key's source identity (empty: keyed by an executable)
+  Values params;           // the key's parameters
+  // "current" (keyed by this build's identity of the solver), "stale" (other sources or build
+  // settings), "executable-keyed" (made before source identities), "unknown solver", "unreadable"
+  std::string state;
+  std::string provenance;  // the run's "run stored in the run cache: ..." note (runs only)
+};
+// Every .run and .ckpt file of `dir`, sorted by name. Throws InputError("runs", ...) when `dir`
+// is not a readable directory.
+std::vector<StoredRun> scan_run_store(const std::string& dir);
 
 // Directory used by run_case (empty: off). Throws InputError("--run-cache", ...) when the
 // directory cannot be created or written, or the executable cannot be read for its identity.

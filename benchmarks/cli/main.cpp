@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #ifdef _OPENMP
@@ -309,6 +310,73 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
 // The stored runs of a run-cache directory: which are usable by this build, with their parameters
 // (those that differ from the solver's defaults) and provenance. --check: exit 1 unless every
 // file is current (reports/full_tier/runs must not keep runs that no build of these sources uses).
+// The solver runs the selected cases compute at `tier` and which of them `dir` holds already
+// (stored), holds a checkpoint of (resumes) or lacks (to compute).
+int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, const std::string& paper,
+                  const std::string& tier, bool as_json) {
+  const fs::path root = source_root();
+  std::vector<fs::path> files;
+  for (const auto& id : ids) files.push_back(resolve_case(id, root));
+  if (!paper.empty()) {
+    if (std::find(kPaperIds.begin(), kPaperIds.end(), paper) == kPaperIds.end()) {
+      throw InputError("--paper", "unknown paper '" + paper + "'");
+    }
+    for (const auto& f : discover_case_files(root)) {
+      if (f.parent_path().filename() == paper) files.push_back(f);
+    }
+  }
+  std::map<std::string, StoredRun> stored;
+  for (auto& s : scan_run_store(dir)) stored[s.file] = std::move(s);
+  const auto holds = [&](const std::string& file, const std::string& key) {
+    const auto it = stored.find(file);
+    return it != stored.end() && it->second.key == key && it->second.state == "current";
+  };
+  json all = json::array();
+  for (const auto& f : files) {
+    const CaseSpec c = load_case(f, tier);
+    if (!c.in_tier(tier)) continue;
+    std::size_t n_stored = 0, n_ckpt = 0, n_todo = 0;
+    json runs = json::array();
+    const auto planned = planned_runs(c);
+    // the parameters that tell this case's runs apart (shown in the listing)
+    std::map<std::string, std::set<double>> values;
+    for (const auto& p : planned) {
+      for (const auto& [k, v] : p.params) values[k].insert(v);
+    }
+    for (const auto& p : planned) {
+      std::string state = "to compute";
+      if (!p.linked.empty()) {
+        state = p.linked;
+      } else if (holds(p.file, p.key)) {
+        state = "stored";
+      } else if (holds(p.file.substr(0, p.file.size() - 4) + ".ckpt", p.key)) {
+        state = "checkpoint";
+      }
+      (state == "stored" ? n_stored : state == "checkpoint" ? n_ckpt : n_todo)++;
+      json params = json::object();
+      for (const auto& [k, v] : p.params) params[k] = v;
+      std::string distinct;
+      for (const auto& [k, v] : p.params) {
+        if (values[k].size() > 1) distinct += (distinct.empty() ? "" : " ") + k + "=" + fmt(v, 6);
+      }
+      runs.push_back({{"series", p.series}, {"point", p.point}, {"solver", p.solver}, {"file", p.file},
+                      {"state", state}, {"params", params}, {"distinct", distinct}});
+    }
+    all.push_back({{"case", c.id}, {"tier", tier}, {"runs", runs}});
+    if (as_json) continue;
+    std::cout << c.id << " (" << tier << "): " << runs.size() << " solver run(s), " << n_stored << " stored, " << n_ckpt
+              << " with a checkpoint, " << n_todo << " to compute\n";
+    for (const auto& r : runs) {
+      std::cout << "  " << std::left << std::setw(24) << (r["series"].get<std::string>() + " " +
+                                                             std::to_string(r["point"].get<std::size_t>()))
+                << std::setw(14) << r["state"].get<std::string>() << std::setw(36) << r["file"].get<std::string>()
+                << r["distinct"].get<std::string>() << "\n";
+    }
+  }
+  if (as_json) std::cout << all.dump(2) << "\n";
+  return 0;
+}
+
 int cmd_runs(const std::string& dir, bool check, bool as_json) {
   const auto stored = scan_run_store(dir);
   json all = json::array();
@@ -428,6 +496,11 @@ int main(int argc, char** argv) {
   runs->add_option("dir", runs_dir, "Run-cache directory (default reports/full_tier/runs)");
   runs->add_flag("--check", runs_check, "Exit 1 unless every stored file is usable by this build");
   runs->add_flag("--json", runs_json, "JSON output");
+  std::vector<std::string> runs_cases;
+  std::string runs_paper, runs_tier = "full";
+  runs->add_option("--case", runs_cases, "Plan: the solver runs of these cases and which DIR holds (repeatable)");
+  runs->add_option("--paper", runs_paper, "Plan: the solver runs of every case of this paper");
+  runs->add_option("--tier", runs_tier, "Plan: tier of the cases (default full)");
 
   std::string report_results = "results", report_out = "report";
   auto* report = app.add_subcommand("report", "Static HTML report from the results directory");
@@ -458,7 +531,11 @@ int main(int argc, char** argv) {
     }
     if (*bench) return cmd_bench(bench_name, bench_args, bench_repeat, bench_out);
     if (*report) return cmd_report(report_results, report_out);
-    if (*runs) return cmd_runs(runs_dir, runs_check, runs_json);
+    if (*runs) {
+      if (runs_cases.empty() && runs_paper.empty()) return cmd_runs(runs_dir, runs_check, runs_json);
+      if (runs_tier != "quick" && runs_tier != "full") throw InputError("--tier", "quick or full");
+      return cmd_runs_plan(runs_dir, runs_cases, runs_paper, runs_tier, runs_json);
+    }
   } catch (const InputError& e) {
     std::cerr << "cutbench: error: " << e.what() << "\n";
     return kExitBadInput;

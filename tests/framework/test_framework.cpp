@@ -613,6 +613,19 @@ params = { a = 1 }
   bool noted = false;
   for (const auto& n : again.series[0].notes) noted = noted || n.find("run cache") != std::string::npos;
   BOOST_TEST(noted);
+  // the plan names the files the case wrote, without running anything
+  calls = 0;
+  const auto plan = planned_runs(c);
+  BOOST_TEST(calls == 0);
+  BOOST_REQUIRE(plan.size() == 3u);
+  BOOST_TEST(plan[0].series == "first");
+  BOOST_TEST(plan[1].point == 2u);
+  BOOST_TEST(plan[1].params.at("a") == 2.0);
+  BOOST_TEST(plan[2].file == plan[0].file);  // the shared run
+  for (const auto& p : plan) {
+    BOOST_TEST(p.key == run_key("toy_counting_solver", p.params));
+    BOOST_TEST(fs::exists(cache / p.file));
+  }
   fs::remove(f);
 }
 

@@ -234,6 +234,33 @@ std::string case_status(const CaseSpec& spec, const std::vector<CheckRecord>& ch
   return pending ? "NOT IMPLEMENTED" : "NOT RUN";
 }
 
+std::vector<PlannedRun> planned_runs(const CaseSpec& spec) {
+  std::vector<PlannedRun> out;
+  if (!spec.implemented()) return out;
+  ReferenceCache refs;
+  for (const auto& s : spec.series) {
+    if (!s.solver || !s.pending.empty()) continue;
+    const SolverSpec* sv = SolverRegistry::instance().find(s.model);
+    if (!sv) throw InputError("series '" + s.name + "'.model", "a registered solver ('" + s.model + "' is not)");
+    const auto points = series_points(s, refs);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      PlannedRun p;
+      p.series = s.name;
+      p.point = k + 1;
+      p.solver = sv->name;
+      if (!s.links.empty()) {
+        p.linked = "needs series '" + s.links.begin()->second.first + "'";
+      } else {
+        p.params = validate_params(ModelSpec{sv->name, "", "", sv->params, {}, {}}, points[k]);
+        p.key = run_key(sv->name, p.params);
+        p.file = run_file_name(sv->name, p.key);
+      }
+      out.push_back(std::move(p));
+    }
+  }
+  return out;
+}
+
 CaseResult run_case(const CaseSpec& spec, const std::string& tier, const ProgressFn& progress) {
   CaseResult r;
   r.case_id = spec.id;

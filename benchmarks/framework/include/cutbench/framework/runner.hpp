@@ -15,6 +15,19 @@ void register_all();
 // Compute the series of a case (analytic models and solver runs) and evaluate its checks.
 CaseResult run_case(const CaseSpec& spec, const std::string& tier, const ProgressFn& progress);
 
+// One solver run that a case computes (one per point of a solver series), found without running
+// anything: its run-cache key and file name (run_cache.hpp). A series whose parameters are linked
+// to another series' outputs cannot be planned: its runs have `linked` set and no key.
+struct PlannedRun {
+  std::string series;
+  std::size_t point = 0;  // 1-based within the series
+  std::string solver;
+  Values params;           // validated, SI (empty when linked)
+  std::string key, file;
+  std::string linked;      // "needs series 'x'" when the parameters come from another series
+};
+std::vector<PlannedRun> planned_runs(const CaseSpec& spec);
+
 // Evaluate the checks of a case against computed series.
 std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector<SeriesResult>& series,
                                          ReferenceCache& refs);

@@ -313,7 +313,7 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
 // The solver runs the selected cases compute at `tier` and which of them `dir` holds already
 // (stored), holds a checkpoint of (resumes) or lacks (to compute).
 int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, const std::string& paper,
-                  const std::string& tier, bool as_json) {
+                  const std::string& tier, bool as_json, bool compute, const std::vector<std::string>& only_series) {
   const fs::path root = source_root();
   std::vector<fs::path> files;
   for (const auto& id : ids) files.push_back(resolve_case(id, root));
@@ -325,6 +325,7 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
       if (f.parent_path().filename() == paper) files.push_back(f);
     }
   }
+  if (compute) set_run_cache_dir(dir);  // creates it (an input error when it cannot be written)
   std::map<std::string, StoredRun> stored;
   for (auto& s : scan_run_store(dir)) stored[s.file] = std::move(s);
   const auto holds = [&](const std::string& file, const std::string& key) {
@@ -374,6 +375,29 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
     }
   }
   if (as_json) std::cout << all.dump(2) << "\n";
+  if (!compute) return 0;
+  // Compute what is missing, in the order listed (cases as given, then series order), each run
+  // stored as soon as it finishes; runs shared between cases are computed once.
+  std::set<std::string> done;
+  for (const auto& c : all) {
+    for (const auto& r : c["runs"]) {
+      const std::string file = r["file"].get<std::string>(), state = r["state"].get<std::string>();
+      const std::string series = r["series"].get<std::string>();
+      if (file.empty() || state == "stored" || done.count(file)) continue;
+      if (!only_series.empty() && std::find(only_series.begin(), only_series.end(), series) == only_series.end()) continue;
+      done.insert(file);
+      const SolverSpec* sv = SolverRegistry::instance().find(r["solver"].get<std::string>());
+      Values params;
+      for (const auto& [k, v] : r["params"].items()) params[k] = v.get<double>();
+      const std::string label = c["case"].get<std::string>() + " " + series + " " + std::to_string(r["point"].get<std::size_t>());
+      std::cerr << "compute " << label << " -> " << file << (state == "checkpoint" ? " (resuming)" : "") << "\n";
+      Progress progress(true);
+      const auto t0 = std::chrono::steady_clock::now();
+      solver_run(*sv, params, [&](double f, const std::string& m) { progress(f, label + ": " + m); });
+      std::cout << "stored " << file << " (" << label << ", "
+                << fmt(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5) << " s)\n";
+    }
+  }
   return 0;
 }
 
@@ -501,6 +525,13 @@ int main(int argc, char** argv) {
   runs->add_option("--case", runs_cases, "Plan: the solver runs of these cases and which DIR holds (repeatable)");
   runs->add_option("--paper", runs_paper, "Plan: the solver runs of every case of this paper");
   runs->add_option("--tier", runs_tier, "Plan: tier of the cases (default full)");
+  bool runs_compute = false;
+  std::vector<std::string> runs_series;
+  runs->add_flag("--compute", runs_compute,
+                 "Plan: compute the runs DIR lacks (resuming checkpoints), store them, evaluate no checks");
+  runs->add_option("--series", runs_series, "Plan: only the runs of these series (repeatable)");
+  runs->add_option("-j,--threads", threads, "OpenMP threads (with --compute)");
+  runs->add_option("--checkpoint-minutes", checkpoint_minutes, "With --compute: minutes between two checkpoints (default 10)");
 
   std::string report_results = "results", report_out = "report";
   auto* report = app.add_subcommand("report", "Static HTML report from the results directory");
@@ -532,9 +563,13 @@ int main(int argc, char** argv) {
     if (*bench) return cmd_bench(bench_name, bench_args, bench_repeat, bench_out);
     if (*report) return cmd_report(report_results, report_out);
     if (*runs) {
-      if (runs_cases.empty() && runs_paper.empty()) return cmd_runs(runs_dir, runs_check, runs_json);
+      if (runs_cases.empty() && runs_paper.empty()) {
+        if (runs_compute || !runs_series.empty()) throw InputError("--compute", "give the cases: --case C or --paper P");
+        return cmd_runs(runs_dir, runs_check, runs_json);
+      }
       if (runs_tier != "quick" && runs_tier != "full") throw InputError("--tier", "quick or full");
-      return cmd_runs_plan(runs_dir, runs_cases, runs_paper, runs_tier, runs_json);
+      set_checkpoint_interval(60.0 * checkpoint_minutes);
+      return cmd_runs_plan(runs_dir, runs_cases, runs_paper, runs_tier, runs_json, runs_compute, runs_series);
     }
   } catch (const InputError& e) {
     std::cerr << "cutbench: error: " << e.what() << "\n";

@@ -41,6 +41,10 @@ expect_eval "eval rake 90"        "rake"    atkins_touching G_c=2000 sigma_y=25M
 expect_eval "eval negative mu"    "mu"      atkins_touching G_c=2000 sigma_y=25MPa h=1mm rake=30deg mu=-0.1
 expect_eval "eval wrong unit"     "h: wrong unit" atkins_touching G_c=2000 sigma_y=25MPa h=1MPa rake=30deg
 expect "run cache not writable"  "--run-cache"  run afrasiabi2021/fig03 --run-cache /proc/cutbench-no-such-dir
+expect_cmd "runs: no directory"         "runs"       runs /proc/cutbench-no-such-dir
+expect_cmd "runs --compute without cases" "--compute" runs /tmp --compute
+expect_cmd "runs: bad tier"            "--tier"     runs --case afrasiabi2021/fig06 --tier medium
+expect_cmd "runs --compute: unwritable" "--run-cache" runs /proc/cutbench-no-such-dir --case afrasiabi2021/fig03 --compute
 if [[ "$("$cutbench" bench efg_cutting completion_guard=1.4 2>&1 >/dev/null)" == *"unknown benchmark"* ]]; then
   echo "skip option not a whole number: the EFG solver is not in this build (CUTBENCH_SOLVERS=OFF)"
 else

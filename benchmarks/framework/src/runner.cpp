@@ -80,6 +80,42 @@ void register_all() {
 #endif
 }
 
+RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressFn& progress, bool* reused,
+                     std::string* path) {
+  if (reused) *reused = false;
+  const std::string& cache = run_cache_dir();
+  if (cache.empty()) return sv.run(params, progress);
+  RunOutput run;
+  const std::string key = run_key(sv.name, params);
+  const std::string cache_path = cache + "/" + run_file_name(sv.name, key);
+  if (path) *path = cache_path;
+  if (load_run(cache_path, key, run)) {
+    if (progress) progress(1.0, "reused from the run cache");
+    if (reused) *reused = true;
+    return run;
+  }
+  // solvers that support checkpoints resume from, and write, <run file>.ckpt
+  const CheckpointSpec ck{cache_path.substr(0, cache_path.size() - 4) + ".ckpt", key, checkpoint_interval(), false};
+  const auto started = std::chrono::steady_clock::now();
+  {
+    CheckpointScope scope(ck);
+    run = sv.run(params, progress);
+  }
+  // provenance of a stored run, which later builds of the same solver sources may reuse
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  run.notes.push_back("run stored in the run cache: computed by cutbench " + software_version() + ", finished " +
+                      utc_now_iso() + ", " + std::to_string(max_threads()) + " thread(s), " +
+                      std::to_string(static_cast<long>(std::lround(wall))) +
+                      " s wall in its last process (a resumed run counts from its checkpoint)");
+  try {
+    save_run(cache_path, key, run);
+    remove_checkpoint(ck);
+  } catch (const std::exception& e) {  // the finished run is kept; only its storage failed
+    run.notes.push_back(std::string("run cache: not stored (") + e.what() + ")");
+  }
+  return run;
+}
+
 namespace {
 
 const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::string& name) {
@@ -155,41 +191,12 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
       if (progress) progress(a + (b - a) * f, s.name + " point " + std::to_string(k + 1) + "/" +
                                                   std::to_string(points.size()) + ": " + msg);
     };
-    RunOutput run;
-    const std::string& cache = run_cache_dir();
     bool reused = false;
     std::string cache_path;
-    if (!cache.empty()) {
-      const std::string key = run_key(sv->name, params);
-      cache_path = cache + "/" + run_file_name(sv->name, key);
-      reused = load_run(cache_path, key, run);
-      if (reused) {
-        inner(1.0, "reused from the run cache");
-        run.notes.push_back("point " + std::to_string(k + 1) + " of series '" + s.name +
-                            "' reused from the run cache (" + cache_path + ")");
-      } else {
-        // solvers that support checkpoints resume from, and write, <run file>.ckpt
-        const CheckpointSpec ck{cache_path.substr(0, cache_path.size() - 4) + ".ckpt", key, checkpoint_interval(), false};
-        const auto started = std::chrono::steady_clock::now();
-        {
-          CheckpointScope scope(ck);
-          run = sv->run(params, inner);
-        }
-        // provenance of a stored run, which later builds of the same solver sources may reuse
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        run.notes.push_back("run stored in the run cache: computed by cutbench " + software_version() + ", finished " +
-                            utc_now_iso() + ", " + std::to_string(max_threads()) + " thread(s), " +
-                            std::to_string(static_cast<long>(std::lround(wall))) +
-                            " s wall in its last process (a resumed run counts from its checkpoint)");
-        try {
-          save_run(cache_path, key, run);
-          remove_checkpoint(ck);
-        } catch (const std::exception& e) {  // the finished run is kept; only its storage failed
-          run.notes.push_back(std::string("run cache: not stored (") + e.what() + ")");
-        }
-      }
-    } else {
-      run = sv->run(params, inner);
+    RunOutput run = solver_run(*sv, params, inner, &reused, &cache_path);
+    if (reused) {
+      run.notes.push_back("point " + std::to_string(k + 1) + " of series '" + s.name + "' reused from the run cache (" +
+                          cache_path + ")");
     }
     for (const auto& o : sv->scalars) {
       auto it = run.scalars.find(o.name);

@@ -28,6 +28,12 @@ struct PlannedRun {
 };
 std::vector<PlannedRun> planned_runs(const CaseSpec& spec);
 
+// One solver run through the run cache (run_cache.hpp) when it is on: read back when stored
+// (`*reused` true), else computed — resuming from and writing checkpoints — and stored with a
+// provenance note (`*path`: the run file). With the cache off, just the run.
+RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressFn& progress, bool* reused = nullptr,
+                     std::string* path = nullptr);
+
 // Evaluate the checks of a case against computed series.
 std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector<SeriesResult>& series,
                                          ReferenceCache& refs);

@@ -12,17 +12,17 @@
 
 #include "cutbench/common/errors.hpp"
 
-#ifndef CUTBENCH_GIT_SHA
-#define CUTBENCH_GIT_SHA "unknown"
-#endif
 #ifndef CUTBENCH_VERSION
 #define CUTBENCH_VERSION "0.0.0"
 #endif
 
 namespace cutbench::framework {
+namespace detail {
+const char* git_sha();  // generated at every build (cmake/git_version.cmake)
+}  // namespace detail
 namespace fs = std::filesystem;
 
-std::string software_version() { return std::string(CUTBENCH_VERSION) + "+" + CUTBENCH_GIT_SHA; }
+std::string software_version() { return std::string(CUTBENCH_VERSION) + "+" + detail::git_sha(); }
 
 std::string utc_now_iso() {
   const std::time_t t = std::time(nullptr);

@@ -27,6 +27,7 @@ constexpr char kMagic[8] = {'C', 'B', 'R', 'U', 'N', '0', '0', '2'};
 std::string g_cache_dir;
 double g_checkpoint_interval = 600.0;
 std::map<std::string, std::string> g_identity;  // solver name -> source identity of its method
+std::map<std::string, std::string> g_settings;  // solver name -> build settings in that identity
 
 }  // namespace
 
@@ -56,11 +57,19 @@ const std::string& build_identity() {
   return id;
 }
 
-void set_solver_identity(const std::string& solver, const std::string& identity) { g_identity[solver] = identity; }
+void set_solver_identity(const std::string& solver, const std::string& identity, const std::string& settings) {
+  g_identity[solver] = identity;
+  g_settings[solver] = settings;
+}
 
 std::string solver_identity(const std::string& solver) {
   const auto it = g_identity.find(solver);
   return it == g_identity.end() ? std::string() : it->second;
+}
+
+std::string solver_build_settings(const std::string& solver) {
+  const auto it = g_settings.find(solver);
+  return it == g_settings.end() ? std::string() : it->second;
 }
 
 std::string run_key(const std::string& solver, const Values& params) {

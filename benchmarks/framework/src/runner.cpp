@@ -41,6 +41,10 @@ const char* source_identity_mpm();
 const char* source_identity_sph();
 const char* source_identity_limit();
 const char* source_identity_efg();
+const char* build_settings_mpm();
+const char* build_settings_sph();
+const char* build_settings_limit();
+const char* build_settings_efg();
 }  // namespace cutbench::framework::detail
 
 namespace cutbench::framework {
@@ -56,27 +60,29 @@ int max_threads() {
 
 // Registers one method's solvers and gives those it adds the method's source identity
 // (register_solvers is idempotent: a second call adds nothing and keeps the identities).
-void register_method(void (*reg)(SolverRegistry&), const char* identity) {
+void register_method(void (*reg)(SolverRegistry&), const char* identity, const char* settings) {
   SolverRegistry& registry = SolverRegistry::instance();
   const std::size_t before = registry.all().size();
   reg(registry);
-  for (std::size_t k = before; k < registry.all().size(); ++k) set_solver_identity(registry.all()[k].name, identity);
+  for (std::size_t k = before; k < registry.all().size(); ++k) {
+    set_solver_identity(registry.all()[k].name, identity, settings);
+  }
 }
 }  // namespace
 
 void register_all() {
   analytic::register_models(ModelRegistry::instance());
 #ifdef CUTBENCH_HAVE_MPM
-  register_method(mpm::register_solvers, detail::source_identity_mpm());
+  register_method(mpm::register_solvers, detail::source_identity_mpm(), detail::build_settings_mpm());
 #endif
 #ifdef CUTBENCH_HAVE_SPH
-  register_method(sph::register_solvers, detail::source_identity_sph());
+  register_method(sph::register_solvers, detail::source_identity_sph(), detail::build_settings_sph());
 #endif
 #ifdef CUTBENCH_HAVE_LIMIT
-  register_method(limit::register_solvers, detail::source_identity_limit());
+  register_method(limit::register_solvers, detail::source_identity_limit(), detail::build_settings_limit());
 #endif
 #ifdef CUTBENCH_HAVE_EFG
-  register_method(efg::register_solvers, detail::source_identity_efg());
+  register_method(efg::register_solvers, detail::source_identity_efg(), detail::build_settings_efg());
 #endif
 }
 
@@ -106,7 +112,9 @@ RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressF
   run.notes.push_back("run stored in the run cache: computed by cutbench " + software_version() + ", finished " +
                       utc_now_iso() + ", " + std::to_string(max_threads()) + " thread(s), " +
                       std::to_string(static_cast<long>(std::lround(wall))) +
-                      " s wall in its last process (a resumed run counts from its checkpoint)");
+                      " s wall in its last process (a resumed run counts from its checkpoint); build: " +
+                      (solver_build_settings(sv.name).empty() ? "executable " + build_identity()
+                                                              : solver_build_settings(sv.name)));
   try {
     save_run(cache_path, key, run);
     remove_checkpoint(ck);

@@ -20,9 +20,14 @@
 namespace cutbench::framework {
 
 // Source identity of the method that registered `solver` (64 hex digits), set by register_all();
-// empty when unknown.
-void set_solver_identity(const std::string& solver, const std::string& identity);
+// empty when unknown. The build settings that entered it (compiler, build type, flags, library
+// versions) are kept beside it as text, for the provenance of stored runs.
+void set_solver_identity(const std::string& solver, const std::string& identity, const std::string& settings = "");
 std::string solver_identity(const std::string& solver);
+std::string solver_build_settings(const std::string& solver);
+// A hash of the running executable's bytes (the key of solvers without a source identity); empty
+// when the executable cannot be read.
+const std::string& build_identity();
 
 // Key text and file name (<solver>-<16 hex digits>.run) of one solver run.
 std::string run_key(const std::string& solver, const Values& params);

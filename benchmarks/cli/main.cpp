@@ -125,13 +125,12 @@ int cmd_list(bool as_json, const fs::path& results, const std::string& paper_fil
   return 0;
 }
 
-int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const std::string& tier_opt,
-            const fs::path& out, bool ctest_mode, bool strict) {
+// Case files named by id or path, plus every case of `paper` (every case when `all` and no paper).
+std::vector<fs::path> select_case_files(const std::vector<std::string>& ids, const std::string& paper, bool all) {
   const fs::path root = source_root();
-  const std::string tier = tier_opt.empty() ? "quick" : tier_opt;
   std::vector<fs::path> files;
   for (const auto& id : ids) files.push_back(resolve_case(id, root));
-  if (!paper.empty() || (!tier_opt.empty() && ids.empty())) {
+  if (!paper.empty() || all) {
     if (!paper.empty() && std::find(kPaperIds.begin(), kPaperIds.end(), paper) == kPaperIds.end()) {
       throw InputError("--paper", "unknown paper '" + paper + "'");
     }
@@ -140,6 +139,13 @@ int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const
       files.push_back(f);
     }
   }
+  return files;
+}
+
+int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const std::string& tier_opt,
+            const fs::path& out, bool ctest_mode, bool strict) {
+  const std::string tier = tier_opt.empty() ? "quick" : tier_opt;
+  const std::vector<fs::path> files = select_case_files(ids, paper, !tier_opt.empty() && ids.empty());
   if (files.empty()) throw InputError("run", "no cases selected (give case ids, --paper or --tier)");
   // Validate everything first: a bad case writes nothing.
   std::vector<CaseSpec> cases;
@@ -314,17 +320,7 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
 // (stored), holds a checkpoint of (resumes) or lacks (to compute).
 int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, const std::string& paper,
                   const std::string& tier, bool as_json, bool compute, const std::vector<std::string>& only_series) {
-  const fs::path root = source_root();
-  std::vector<fs::path> files;
-  for (const auto& id : ids) files.push_back(resolve_case(id, root));
-  if (!paper.empty()) {
-    if (std::find(kPaperIds.begin(), kPaperIds.end(), paper) == kPaperIds.end()) {
-      throw InputError("--paper", "unknown paper '" + paper + "'");
-    }
-    for (const auto& f : discover_case_files(root)) {
-      if (f.parent_path().filename() == paper) files.push_back(f);
-    }
-  }
+  const std::vector<fs::path> files = select_case_files(ids, paper, false);
   if (compute) set_run_cache_dir(dir);  // creates it (an input error when it cannot be written)
   std::map<std::string, StoredRun> stored;
   for (auto& s : scan_run_store(dir)) stored[s.file] = std::move(s);

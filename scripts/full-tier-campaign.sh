@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Fill reports/full_tier/runs with the full-tier solver runs of one method, cheap runs first, one
+# thread each (two campaigns side by side use the two cores without oversubscribing them). Runs
+# already stored are skipped and a run with a checkpoint there resumes, so the script can be
+# started again on any machine after an interruption.
+efg [cutbench executable]|efg [cutbench executable]
+# Needs a release build. Afterwards: `cutbench runs` (what is stored), record the cases whose runs
+# are complete (reports/full_tier/runs/README.md), commit the new .run files; before a machine
+# goes away, `git add -f` the checkpoints of unfinished runs.
+set -euo pipefail
+cd "${CUTBENCH_ROOT:-$(dirname "$0")/..}"
+method="${1:-}"
+cutbench="${2:-build/release/benchmarks/cli/cutbench}"
+store=reports/full_tier/runs
+compute() { "$cutbench" runs "$store" --compute -j 1 --checkpoint-minutes "${CHECKPOINT_MINUTES:-5}" "$@"; }
+case "$method" in
+  sph)
+    # Afrasiabi Figs 5-7 share the mu = 0.35 runs of Fig 6 (about 70 min each on two threads,
+    # 2 h on one); Fig 8 (three 2121-particle runs, about 20 CPU-min each); Figs 9 and 10.
+    compute --case afrasiabi2021/fig03 --case afrasiabi2021/table1
+    compute --case afrasiabi2021/fig06
+    compute --case afrasiabi2021/fig08
+    compute --case afrasiabi2021/fig09
+    compute --case afrasiabi2021/fig10
+    ;;
+  efg)
+    # Kahwash: the node study and every LaRC02 / Hashin run first (0.5-2 CPU-min each at 12,015
+    # nodes), then maximum stress at 15-45 deg (10-50 min), then the runs that do not separate
+    # and go on to the 0.3 mm travel limit (max stress 60/75 deg, LaRC02 75 deg: about 1 CPU-h each).
+    compute --case kahwash2018/table2 --case kahwash2018/table6
+    compute --case kahwash2018/table4 --series efg_hashin --series time_scaling
+    compute --case kahwash2018/fig06 --series hashin --series larc02
+    compute --case kahwash2018/fig08 --series hashin
+    compute --case kahwash2018/table4 --series efg_larc02
+    compute --case kahwash2018/table4 --series efg_max_stress
+    compute --case kahwash2018/fig06 --case kahwash2018/fig08 --case kahwash2018/fig09 --case kahwash2018/fig10
+    ;;
+  *)
+    echo "usage: scripts/full-tier-campaign.sh sph|efg [cutbench executable]" >&2
+    exit 2
+    ;;
+esac
+"$cutbench" runs "$store"

@@ -3,7 +3,7 @@
 # thread each (two campaigns side by side use the two cores without oversubscribing them). Runs
 # already stored are skipped and a run with a checkpoint there resumes, so the script can be
 # started again on any machine after an interruption.
-efg [cutbench executable]|efg [cutbench executable]
+#   scripts/full-tier-campaign.sh sph|efg [cutbench executable]   (CUTBENCH_ROOT: the checkout, when run from a copy)
 # Needs a release build. Afterwards: `cutbench runs` (what is stored), record the cases whose runs
 # are complete (reports/full_tier/runs/README.md), commit the new .run files; before a machine
 # goes away, `git add -f` the checkpoints of unfinished runs.

@@ -375,6 +375,7 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
   // Compute what is missing, in the order listed (cases as given, then series order), each run
   // stored as soon as it finishes; runs shared between cases are computed once.
   std::set<std::string> done;
+  int failed = 0;
   for (const auto& c : all) {
     for (const auto& r : c["runs"]) {
       const std::string file = r["file"].get<std::string>(), state = r["state"].get<std::string>();
@@ -389,12 +390,20 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
       std::cerr << "compute " << label << " -> " << file << (state == "checkpoint" ? " (resuming)" : "") << "\n";
       Progress progress(true);
       const auto t0 = std::chrono::steady_clock::now();
-      solver_run(*sv, params, [&](double f, const std::string& m) { progress(f, label + ": " + m); });
+      try {
+        solver_run(*sv, params, [&](double f, const std::string& m) { progress(f, label + ": " + m); });
+      } catch (const InputError&) {
+        throw;
+      } catch (const std::exception& e) {  // a failed run (its checkpoint stays); go on with the others
+        std::cout << "FAILED " << file << " (" << label << "): " << e.what() << "\n";
+        ++failed;
+        continue;
+      }
       std::cout << "stored " << file << " (" << label << ", "
                 << fmt(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5) << " s)\n";
     }
   }
-  return 0;
+  return failed > 0 ? kExitFail : 0;
 }
 
 int cmd_runs(const std::string& dir, bool check, bool as_json) {

@@ -399,6 +399,23 @@ def full_summary(counts):
     return ", ".join("%d %s" % (counts[k], k) for k in ("PASS", "FAIL", "NOT RUN", "NOT IMPLEMENTED") if counts.get(k))
 
 
+def runs_summary(fr):
+    """'3 of 30 (1 with a checkpoint)' for the stored full-tier solver runs ('-' without any)."""
+    if not fr or not fr.get("total"):
+        return "-"
+    extra = " (%d with a checkpoint)" % fr["checkpoint"] if fr.get("checkpoint") else ""
+    return "%d of %d%s" % (fr["stored"], fr["total"], extra)
+
+
+def runs_total(by_paper):
+    """The per-paper run counts summed (runs are never shared between papers)."""
+    out = {"total": 0, "stored": 0, "checkpoint": 0}
+    for fr in by_paper.values():
+        for k in out:
+            out[k] += fr.get(k, 0)
+    return out
+
+
 def load_full_records(directory):
     """Recorded full-tier case records (reports/full_tier/<paper>/<item>.json), by case id."""
     out = {}
@@ -511,6 +528,13 @@ def main():
                 parts.append(checks_table(checks))
             elif c["implemented"]:
                 parts.append('<p class="note">Not run yet in this results directory.</p>')
+            fr = c.get("full_runs")
+            if fr:
+                parts.append('<p class="small">Full-tier campaign: %d of %d solver runs stored in '
+                             '<code>reports/full_tier/runs</code>%s (<code>cutbench runs --case %s</code>).</p>' % (
+                                 fr["stored"], fr["total"],
+                                 ", %d with a checkpoint" % fr["checkpoint"] if fr.get("checkpoint") else "",
+                                 html.escape(c["case"])))
             rec = full_records.get(c["case"])
             if rec:
                 full_counts[rec.get("status", "NOT RUN")] = full_counts.get(rec.get("status", "NOT RUN"), 0) + 1
@@ -521,26 +545,31 @@ def main():
             totals[k] += counts.get(k, 0)
         write(os.path.join(a.out, pid + ".html"), page(pid, "".join(body)))
         summary_rows.append("<tr><td><a href=\"%s.html\">%s</a></td><td>%s</td><td>%d</td><td>%d</td><td>%d</td>"
-                            "<td>%d</td><td>%d</td><td>%s</td></tr>" % (
+                            "<td>%d</td><td>%d</td><td>%s</td><td>%s</td></tr>" % (
                                 pid, pid, html.escape(papers[pid].get("meta", {}).get("citation", "")),
                                 len(cases), counts["PASS"], counts["FAIL"], counts["NOT RUN"],
-                                counts["NOT IMPLEMENTED"], full_summary(full_counts)))
+                                counts["NOT IMPLEMENTED"], full_summary(full_counts),
+                                runs_summary(man.get("full_runs", {}).get(pid))))
         for k, v in full_counts.items():
             full_totals[k] = full_totals.get(k, 0) + v
     body = ("<p>Software %s · manifest written %s</p>" % (html.escape(man.get("software", "")),
                                                           html.escape(man.get("date", ""))) +
             "<table><tr><th>paper</th><th>citation</th><th>cases</th><th>%s</th><th>%s</th><th>%s</th><th>%s</th>"
-            "<th>full tier, recorded runs</th></tr>"
+            "<th>full tier, recorded runs</th><th>full tier, stored solver runs</th></tr>"
             % (badge("PASS"), badge("FAIL"), badge("NOT RUN"), badge("NOT IMPLEMENTED")) +
             "".join(summary_rows) +
-            "<tr><th>all</th><th></th><th>%d</th><th>%d</th><th>%d</th><th>%d</th><th>%d</th><th>%s</th></tr></table>" % (
+            "<tr><th>all</th><th></th><th>%d</th><th>%d</th><th>%d</th><th>%d</th><th>%d</th><th>%s</th><th>%s</th>"
+            "</tr></table>" % (
                 sum(totals.values()), totals["PASS"], totals["FAIL"], totals["NOT RUN"], totals["NOT IMPLEMENTED"],
-                full_summary(full_totals)) +
+                full_summary(full_totals), runs_summary(runs_total(man.get("full_runs", {})))) +
             "<p class=\"small\">A case is PASS when every check it could evaluate passed (a documented known "
             "failure stays FAIL in its row); NOT RUN when its inputs are missing; NOT IMPLEMENTED when its "
             "model or solver does not exist yet. The statuses are those of the quick tier this report ran; the "
             "last column counts the recorded runs of the full tier (paper resolution, CPU-hours, not part of the "
-            "main job; reports/full_tier, written by reports/record_full_tier.py), shown under each case.</p>")
+            "main job; reports/full_tier, written by reports/record_full_tier.py), shown under each case; the "
+            "last counts the distinct solver runs the full-tier cases need and how many of them the repository "
+            "keeps (reports/full_tier/runs: the campaign that accumulates them across machines; "
+            "<code>cutbench runs --paper P</code>).</p>")
     write(os.path.join(a.out, "index.html"), page("summary", body))
     print("report: %d cases, %s" % (sum(totals.values()), totals))
 

@@ -629,6 +629,31 @@ params = { a = 1 }
   fs::remove(f);
 }
 
+// The manifest that the report reads counts, per case and per paper, the distinct full-tier solver
+// runs and how many of them the repository's run store holds (the campaign's progress).
+BOOST_AUTO_TEST_CASE(manifest_counts_the_full_tier_runs) {
+  if (!SolverRegistry::instance().find("sph_cutting")) return;  // solvers not in this build
+  const fs::path dir = fs::temp_directory_path() / "cutbench_test_manifest";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write_manifest(dir);
+  std::ifstream in(dir / "manifest.json");
+  const json m = json::parse(in);
+  bool seen = false;
+  for (const auto& c : m.at("cases")) {
+    if (c.at("case") != "afrasiabi2021/fig06") continue;
+    seen = true;
+    BOOST_TEST(c.at("full_runs").at("total").get<int>() == 4);  // reference + enhanced at three mu
+    BOOST_TEST(c.at("full_runs").at("stored").get<int>() <= 4);
+  }
+  BOOST_TEST(seen);
+  // fig05 and fig07 share fig06's mu = 0.35 runs: the paper counts distinct runs
+  const auto& fr = m.at("full_runs").at("afrasiabi2021");
+  BOOST_TEST(fr.at("total").get<int>() >= 4);
+  BOOST_TEST(fr.at("total").get<int>() < 20);
+  fs::remove_all(dir);
+}
+
 // Recorded full-tier runs (reports/full_tier/<paper>/<item>.json, written by
 // reports/record_full_tier.py) are shown in the report next to the quick tier: each must name an
 // existing case and only checks that case evaluates in the full tier, say how it was run, and

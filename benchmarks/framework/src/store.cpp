@@ -1,6 +1,12 @@
 #include "cutbench/framework/store.hpp"
 
 #include <fstream>
+#include <map>
+#include <set>
+
+#include "cutbench/common/errors.hpp"
+#include "cutbench/framework/run_cache.hpp"
+#include "cutbench/framework/runner.hpp"
 
 namespace cutbench::framework {
 namespace fs = std::filesystem;
@@ -60,6 +66,17 @@ void write_manifest(const fs::path& dir) {
     }
   }
   m["papers"] = papers;
+  // the full-tier campaign: which solver runs of each case the repository's run store holds
+  const fs::path store = root / "reports" / "full_tier" / "runs";
+  std::map<std::string, StoredRun> stored;
+  if (fs::is_directory(store)) {
+    for (auto& s : scan_run_store(store.string())) stored[s.file] = std::move(s);
+  }
+  const auto held = [&](const std::string& file, const std::string& key) {
+    const auto it = stored.find(file);
+    return it != stored.end() && it->second.key == key && it->second.state == "current";
+  };
+  std::map<std::string, std::set<std::string>> paper_total, paper_done, paper_ckpt;  // distinct runs
   json cases = json::array();
   for (const auto& file : discover_case_files(root)) {
     CaseSpec c = load_case(file, "quick");
@@ -70,6 +87,29 @@ void write_manifest(const fs::path& dir) {
               {"implemented", c.implemented()}, {"reason", c.reason}, {"solver", c.solver},
               {"models", c.models},    {"tiers", c.tiers},         {"assumptions", c.assumptions},
               {"plots", c.plots},      {"tables", c.tables},       {"file", fs::relative(file, root).string()}};
+    std::vector<PlannedRun> plan;
+    if (c.implemented() && c.in_tier("full")) {
+      try {
+        plan = planned_runs(load_case(file, "full"));
+      } catch (const InputError&) {  // a solver this build lacks (CUTBENCH_SOLVERS=OFF): nothing to count
+      }
+    }
+    if (!plan.empty()) {
+      std::set<std::string> total, done, ckpt;
+      for (const auto& p : plan) {
+        if (p.file.empty()) continue;  // linked to another series' outputs: not known before running
+        total.insert(p.file);
+        if (held(p.file, p.key)) {
+          done.insert(p.file);
+        } else if (held(p.file.substr(0, p.file.size() - 4) + ".ckpt", p.key)) {
+          ckpt.insert(p.file);
+        }
+      }
+      if (!total.empty()) j["full_runs"] = {{"total", total.size()}, {"stored", done.size()}, {"checkpoint", ckpt.size()}};
+      paper_total[c.paper].insert(total.begin(), total.end());
+      paper_done[c.paper].insert(done.begin(), done.end());
+      paper_ckpt[c.paper].insert(ckpt.begin(), ckpt.end());
+    }
     if (last.is_object()) {
       j["status"] = last.value("status", "NOT RUN");
       j["last_run"] = last;
@@ -79,6 +119,11 @@ void write_manifest(const fs::path& dir) {
     cases.push_back(j);
   }
   m["cases"] = cases;
+  json runs = json::object();
+  for (const auto& [paper, files] : paper_total) {
+    runs[paper] = {{"total", files.size()}, {"stored", paper_done[paper].size()}, {"checkpoint", paper_ckpt[paper].size()}};
+  }
+  m["full_runs"] = runs;
   write_atomic(dir / "manifest.json", m.dump(1) + "\n");
 }
 

@@ -406,7 +406,7 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
   return failed > 0 ? kExitFail : 0;
 }
 
-int cmd_runs(const std::string& dir, bool check, bool as_json) {
+int cmd_runs(const std::string& dir, bool check, bool as_json, bool scalars) {
   const auto stored = scan_run_store(dir);
   json all = json::array();
   std::size_t not_current = 0;
@@ -426,13 +426,24 @@ int cmd_runs(const std::string& dir, bool check, bool as_json) {
       differing += (differing.empty() ? "" : " ") + name + "=" + fmt(value, 10);
     }
     if (s.state != "current") ++not_current;
+    json results = json::object();
+    for (const auto& [name, value] : s.scalars) results[name] = value;
     all.push_back({{"file", s.file}, {"kind", s.kind}, {"solver", s.solver}, {"state", s.state},
                    {"identity", s.identity}, {"params", params}, {"differing", differing},
-                   {"provenance", s.provenance}});
+                   {"provenance", s.provenance}, {"scalars", results}});
     if (as_json) continue;
     std::cout << s.file << "  " << s.kind << "  " << s.state << "\n";
     if (!differing.empty()) std::cout << "  " << differing << "\n";
     if (!s.provenance.empty()) std::cout << "  " << s.provenance << "\n";
+    if (scalars && !s.scalars.empty()) {
+      std::string line;
+      for (const auto& [name, value] : s.scalars) {
+        const auto u = s.scalar_units.find(name);
+        line += (line.empty() ? "" : ", ") + name + " " + fmt(value) +
+                (u == s.scalar_units.end() || u->second == "1" ? "" : " " + u->second);
+      }
+      std::cout << "  results: " << line << "\n";
+    }
   }
   if (as_json) {
     std::cout << all.dump(2) << "\n";
@@ -525,6 +536,8 @@ int main(int argc, char** argv) {
   runs->add_option("dir", runs_dir, "Run-cache directory (default reports/full_tier/runs)");
   runs->add_flag("--check", runs_check, "Exit 1 unless every stored file is usable by this build");
   runs->add_flag("--json", runs_json, "JSON output");
+  bool runs_scalars = false;
+  runs->add_flag("--results", runs_scalars, "Also print each stored run's scalar results");
   std::vector<std::string> runs_cases;
   std::string runs_paper, runs_tier = "full";
   runs->add_option("--case", runs_cases, "Plan: the solver runs of these cases and which DIR holds (repeatable)");
@@ -570,7 +583,7 @@ int main(int argc, char** argv) {
     if (*runs) {
       if (runs_cases.empty() && runs_paper.empty()) {
         if (runs_compute || !runs_series.empty()) throw InputError("--compute", "give the cases: --case C or --paper P");
-        return cmd_runs(runs_dir, runs_check, runs_json);
+        return cmd_runs(runs_dir, runs_check, runs_json, runs_scalars);
       }
       if (runs_tier != "quick" && runs_tier != "full") throw InputError("--tier", "quick or full");
       set_checkpoint_interval(60.0 * checkpoint_minutes);

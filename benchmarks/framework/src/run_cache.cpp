@@ -229,6 +229,8 @@ std::vector<StoredRun> scan_run_store(const std::string& dir) {
         for (const auto& n : run.notes) {
           if (n.rfind("run stored in the run cache:", 0) == 0) s.provenance = n;
         }
+        s.scalars = std::move(run.scalars);
+        s.scalar_units = std::move(run.scalar_units);
       }
     }
     out.push_back(std::move(s));

@@ -11,6 +11,7 @@
 // and a hash of the running executable instead. The key is stored in the file and compared on
 // load (a hash collision only costs a recompute); files are written to a per-process temporary
 // name and renamed.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,8 @@ struct StoredRun {
   // settings), "executable-keyed" (made before source identities), "unknown solver", "unreadable"
   std::string state;
   std::string provenance;  // the run's "run stored in the run cache: ..." note (runs only)
+  Values scalars;          // the run's scalar results (runs only)
+  std::map<std::string, std::string> scalar_units;
 };
 // Every .run and .ckpt file of `dir`, sorted by name. Throws InputError("runs", ...) when `dir`
 // is not a readable directory.

@@ -313,9 +313,6 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
   return 0;
 }
 
-// The stored runs of a run-cache directory: which are usable by this build, with their parameters
-// (those that differ from the solver's defaults) and provenance. --check: exit 1 unless every
-// file is current (reports/full_tier/runs must not keep runs that no build of these sources uses).
 // The solver runs the selected cases compute at `tier` and which of them `dir` holds already
 // (stored), holds a checkpoint of (resumes) or lacks (to compute).
 int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, const std::string& paper,
@@ -324,10 +321,12 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
   if (compute) set_run_cache_dir(dir);  // creates it (an input error when it cannot be written)
   std::map<std::string, StoredRun> stored;
   for (auto& s : scan_run_store(dir)) stored[s.file] = std::move(s);
-  const auto holds = [&](const std::string& file, const std::string& key) {
-    const auto it = stored.find(file);
-    return it != stored.end() && it->second.key == key && it->second.state == "current";
+  struct Item {
+    std::string label;  // case, series, point
+    PlannedRun run;
+    std::string state;
   };
+  std::vector<Item> items;
   json all = json::array();
   for (const auto& f : files) {
     const CaseSpec c = load_case(f, tier);
@@ -341,23 +340,17 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
       for (const auto& [k, v] : p.params) values[k].insert(v);
     }
     for (const auto& p : planned) {
-      std::string state = "to compute";
-      if (!p.linked.empty()) {
-        state = p.linked;
-      } else if (holds(p.file, p.key)) {
-        state = "stored";
-      } else if (holds(p.file.substr(0, p.file.size() - 4) + ".ckpt", p.key)) {
-        state = "checkpoint";
-      }
+      const std::string state = planned_run_state(p, stored);
       (state == "stored" ? n_stored : state == "checkpoint" ? n_ckpt : n_todo)++;
       json params = json::object();
-      for (const auto& [k, v] : p.params) params[k] = v;
       std::string distinct;
       for (const auto& [k, v] : p.params) {
+        params[k] = v;
         if (values[k].size() > 1) distinct += (distinct.empty() ? "" : " ") + k + "=" + fmt(v, 6);
       }
       runs.push_back({{"series", p.series}, {"point", p.point}, {"solver", p.solver}, {"file", p.file},
                       {"state", state}, {"params", params}, {"distinct", distinct}});
+      items.push_back({c.id + " " + p.series + " " + std::to_string(p.point), p, state});
     }
     all.push_back({{"case", c.id}, {"tier", tier}, {"runs", runs}});
     if (as_json) continue;
@@ -376,36 +369,34 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
   // stored as soon as it finishes; runs shared between cases are computed once.
   std::set<std::string> done;
   int failed = 0;
-  for (const auto& c : all) {
-    for (const auto& r : c["runs"]) {
-      const std::string file = r["file"].get<std::string>(), state = r["state"].get<std::string>();
-      const std::string series = r["series"].get<std::string>();
-      if (file.empty() || state == "stored" || done.count(file)) continue;
-      if (!only_series.empty() && std::find(only_series.begin(), only_series.end(), series) == only_series.end()) continue;
-      done.insert(file);
-      const SolverSpec* sv = SolverRegistry::instance().find(r["solver"].get<std::string>());
-      Values params;
-      for (const auto& [k, v] : r["params"].items()) params[k] = v.get<double>();
-      const std::string label = c["case"].get<std::string>() + " " + series + " " + std::to_string(r["point"].get<std::size_t>());
-      std::cerr << "compute " << label << " -> " << file << (state == "checkpoint" ? " (resuming)" : "") << "\n";
-      Progress progress(true);
-      const auto t0 = std::chrono::steady_clock::now();
-      try {
-        solver_run(*sv, params, [&](double f, const std::string& m) { progress(f, label + ": " + m); });
-      } catch (const InputError&) {
-        throw;
-      } catch (const std::exception& e) {  // a failed run (its checkpoint stays); go on with the others
-        std::cout << "FAILED " << file << " (" << label << "): " << e.what() << "\n";
-        ++failed;
-        continue;
-      }
-      std::cout << "stored " << file << " (" << label << ", "
-                << fmt(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5) << " s)\n";
+  for (const auto& it : items) {
+    const PlannedRun& p = it.run;
+    if (p.file.empty() || it.state == "stored" || done.count(p.file)) continue;
+    if (!only_series.empty() && std::find(only_series.begin(), only_series.end(), p.series) == only_series.end()) continue;
+    done.insert(p.file);
+    std::cerr << "compute " << it.label << " -> " << p.file << (it.state == "checkpoint" ? " (resuming)" : "") << "\n";
+    Progress progress(true);
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      solver_run(*SolverRegistry::instance().find(p.solver), p.params,
+                 [&](double f, const std::string& m) { progress(f, it.label + ": " + m); });
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {  // a failed run (its checkpoint stays); go on with the others
+      std::cout << "FAILED " << p.file << " (" << it.label << "): " << e.what() << "\n";
+      ++failed;
+      continue;
     }
+    std::cout << "stored " << p.file << " (" << it.label << ", "
+              << fmt(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5) << " s)\n";
   }
   return failed > 0 ? kExitFail : 0;
 }
 
+// The stored runs of a run-cache directory: which are usable by this build, with their parameters
+// (those that differ from the solver's defaults), provenance and (--results) scalar results.
+// --check: exit 1 unless every file is current (reports/full_tier/runs must not keep runs that no
+// build of these sources uses).
 int cmd_runs(const std::string& dir, bool check, bool as_json, bool scalars) {
   const auto stored = scan_run_store(dir);
   json all = json::array();

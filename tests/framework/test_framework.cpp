@@ -622,10 +622,28 @@ params = { a = 1 }
   BOOST_TEST(plan[1].point == 2u);
   BOOST_TEST(plan[1].params.at("a") == 2.0);
   BOOST_TEST(plan[2].file == plan[0].file);  // the shared run
+  std::map<std::string, StoredRun> store;
+  for (auto& st : scan_run_store(cache.string())) store[st.file] = st;
   for (const auto& p : plan) {
     BOOST_TEST(p.key == run_key("toy_counting_solver", p.params));
     BOOST_TEST(fs::exists(cache / p.file));
   }
+  // the toy solver has no source identity: its runs are executable-keyed, so a store does not
+  // count them as usable; with an identity they are stored, and a lone checkpoint resumes
+  BOOST_TEST(planned_run_state(plan[0], store) == "to compute");
+  set_solver_identity("toy_counting_solver", std::string(64, 'c'));
+  const auto plan2 = planned_runs(c);
+  RunOutput copy;
+  BOOST_REQUIRE(load_run((cache / plan[0].file).string(), plan[0].key, copy));
+  save_run((cache / plan2[0].file).string(), plan2[0].key, copy);
+  write_checkpoint(CheckpointSpec{(cache / (plan2[1].file.substr(0, plan2[1].file.size() - 4) + ".ckpt")).string(),
+                                  plan2[1].key, 1.0, false},
+                   [](BinaryWriter& w) { w.f64(0.5); });
+  store.clear();
+  for (auto& st : scan_run_store(cache.string())) store[st.file] = st;
+  BOOST_TEST(planned_run_state(plan2[0], store) == "stored");
+  BOOST_TEST(planned_run_state(plan2[1], store) == "checkpoint");
+  set_solver_identity("toy_counting_solver", "");
   fs::remove(f);
 }
 

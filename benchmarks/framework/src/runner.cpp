@@ -60,7 +60,7 @@ int max_threads() {
 
 // Registers one method's solvers and gives those it adds the method's source identity
 // (register_solvers is idempotent: a second call adds nothing and keeps the identities).
-void register_method(void (*reg)(SolverRegistry&), const char* identity, const char* settings) {
+[[maybe_unused]] void register_method(void (*reg)(SolverRegistry&), const char* identity, const char* settings) {
   SolverRegistry& registry = SolverRegistry::instance();
   const std::size_t before = registry.all().size();
   reg(registry);
@@ -274,6 +274,17 @@ std::vector<PlannedRun> planned_runs(const CaseSpec& spec) {
     }
   }
   return out;
+}
+
+std::string planned_run_state(const PlannedRun& run, const std::map<std::string, StoredRun>& store) {
+  if (!run.linked.empty()) return run.linked;
+  const auto holds = [&](const std::string& file) {
+    const auto it = store.find(file);
+    return it != store.end() && it->second.key == run.key && it->second.state == "current";
+  };
+  if (holds(run.file)) return "stored";
+  if (holds(run.file.substr(0, run.file.size() - 4) + ".ckpt")) return "checkpoint";
+  return "to compute";
 }
 
 CaseResult run_case(const CaseSpec& spec, const std::string& tier, const ProgressFn& progress) {

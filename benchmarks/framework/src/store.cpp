@@ -72,10 +72,6 @@ void write_manifest(const fs::path& dir) {
   if (fs::is_directory(store)) {
     for (auto& s : scan_run_store(store.string())) stored[s.file] = std::move(s);
   }
-  const auto held = [&](const std::string& file, const std::string& key) {
-    const auto it = stored.find(file);
-    return it != stored.end() && it->second.key == key && it->second.state == "current";
-  };
   std::map<std::string, std::set<std::string>> paper_total, paper_done, paper_ckpt;  // distinct runs
   json cases = json::array();
   for (const auto& file : discover_case_files(root)) {
@@ -99,11 +95,9 @@ void write_manifest(const fs::path& dir) {
       for (const auto& p : plan) {
         if (p.file.empty()) continue;  // linked to another series' outputs: not known before running
         total.insert(p.file);
-        if (held(p.file, p.key)) {
-          done.insert(p.file);
-        } else if (held(p.file.substr(0, p.file.size() - 4) + ".ckpt", p.key)) {
-          ckpt.insert(p.file);
-        }
+        const std::string state = planned_run_state(p, stored);
+        if (state == "stored") done.insert(p.file);
+        if (state == "checkpoint") ckpt.insert(p.file);
       }
       if (!total.empty()) j["full_runs"] = {{"total", total.size()}, {"stored", done.size()}, {"checkpoint", ckpt.size()}};
       paper_total[c.paper].insert(total.begin(), total.end());

@@ -1,11 +1,13 @@
 #pragma once
 #include <functional>
+#include <map>
 #include <string>
 
 #include "cutbench/common/solver.hpp"
 #include "cutbench/framework/case.hpp"
 #include "cutbench/framework/reference.hpp"
 #include "cutbench/framework/results.hpp"
+#include "cutbench/framework/run_cache.hpp"
 
 namespace cutbench::framework {
 
@@ -27,6 +29,10 @@ struct PlannedRun {
   std::string linked;      // "needs series 'x'" when the parameters come from another series
 };
 std::vector<PlannedRun> planned_runs(const CaseSpec& spec);
+// Where a planned run stands in a run store (scan_run_store, by file name): "stored", "checkpoint"
+// (an unfinished run that will resume), "to compute", or its `linked` reason. Only files usable by
+// this build count.
+std::string planned_run_state(const PlannedRun& run, const std::map<std::string, StoredRun>& store);
 
 // One solver run through the run cache (run_cache.hpp) when it is on: read back when stored
 // (`*reused` true), else computed — resuming from and writing checkpoints — and stored with a

@@ -53,13 +53,13 @@ void add_toy() {
   ModelRegistry::instance().add(m);
 }
 
-fs::path write_case(const std::string& name, const std::string& body) {
+fs::path write_case(const std::string& name, const std::string& body, const std::string& tiers = "[\"quick\"]") {
   const fs::path dir = fs::temp_directory_path() / "cutbench_test_cases" / "nairn2015";
   fs::create_directories(dir);
   const fs::path file = dir / (name + ".toml");
   std::ofstream(file) << "id = \"nairn2015/" << name << "\"\npaper = \"nairn2015\"\nitem = \"Test\"\n"
                       << "title = \"t\"\nrequirement = \"r\"\nsolver = \"analytic\"\nmodels = [\"toy_linear\"]\n"
-                      << "tiers = [\"quick\"]\n" << body;
+                      << "tiers = " << tiers << "\n" << body;
   return file;
 }
 }  // namespace
@@ -242,6 +242,38 @@ source = "test"
   const CaseSpec cb = load_case(bad, "quick");
   BOOST_CHECK_EXCEPTION(run_case(cb, "quick", nullptr), InputError,
                         [](const InputError& e) { return e.field().find(".row") != std::string::npos; });
+}
+
+BOOST_AUTO_TEST_CASE(known_failure_can_name_its_tier) {
+  add_toy();
+  // y = 2 x = 2 mm against 5 mm: fails on both tiers, documented for the full tier only
+  const std::string check = R"(status = "implemented"
+[[series]]
+name = "line"
+model = "toy_linear"
+params = { x = "1 mm" }
+[[checks]]
+key = "k"
+kind = "reproduction"
+metric = "absolute"
+value = { series = "line", output = "y" }
+reference = 5
+tolerance = 0.1
+units = "mm"
+source = "deliberately wrong"
+)";
+  const fs::path f = write_case("toy_kf_tier", check + "known_failure = { full = \"full-tier reason\" }\n", "[\"quick\", \"full\"]");
+  const CaseResult quick = run_case(load_case(f, "quick"), "quick", nullptr);
+  const CaseResult full = run_case(load_case(f, "full"), "full", nullptr);
+  BOOST_REQUIRE_EQUAL(quick.checks.size(), 1u);
+  BOOST_REQUIRE_EQUAL(full.checks.size(), 1u);
+  BOOST_TEST(quick.checks[0].status == "FAIL");
+  BOOST_TEST(quick.checks[0].known_failure.empty());  // undocumented on the quick tier: an unexpected failure
+  BOOST_TEST(full.checks[0].status == "FAIL");
+  BOOST_TEST(full.checks[0].known_failure == "full-tier reason");
+  const fs::path bad = write_case("toy_kf_bad_tier", check + "known_failure = { slow = \"x\" }\n", "[\"quick\", \"full\"]");
+  BOOST_CHECK_EXCEPTION(load_case(bad, "quick"), InputError,
+                        [](const InputError& e) { return e.field().find("known_failure.slow") != std::string::npos; });
 }
 
 BOOST_AUTO_TEST_CASE(bad_case_files_name_the_field) {

@@ -63,6 +63,22 @@ std::string get_string(const json& obj, const std::string& key, const std::strin
   return obj[key].get<std::string>();
 }
 
+// A check's documented failure: one text for every tier, or a table { quick = "...", full = "..." }
+// whose tiers without a text expect the check to pass.
+std::string known_failure_for_tier(const json& check, const std::string& tier, const std::string& where) {
+  if (!check.contains("known_failure")) return {};
+  const json& kf = check["known_failure"];
+  if (kf.is_string()) return kf.get<std::string>();
+  if (!kf.is_object()) throw InputError(where + "known_failure", "expected a string or a table of tiers (quick, full) to strings");
+  std::string text;
+  for (const auto& [t, v] : kf.items()) {
+    if (!kTiers.count(t)) throw InputError(where + "known_failure." + t, "unknown tier '" + t + "' (expected quick or full)");
+    if (!v.is_string()) throw InputError(where + "known_failure." + t, "expected a string");
+    if (t == tier) text = v.get<std::string>();
+  }
+  return text;
+}
+
 std::vector<std::string> get_strings(const json& obj, const std::string& key, const std::string& where) {
   std::vector<std::string> out;
   if (!obj.contains(key)) return out;
@@ -450,7 +466,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       cs.units = get_string(ch, "units", cw);
       unit_info(cs.units, cw + "units");
       cs.source = get_string(ch, "source", cw);
-      cs.known_failure = get_string(ch, "known_failure", cw, false);
+      cs.known_failure = known_failure_for_tier(ch, tier, cw);
       cs.description = get_string(ch, "description", cw, false);
       cs.tiers = get_strings(ch, "tiers", cw);
       for (const auto& t : cs.tiers) {

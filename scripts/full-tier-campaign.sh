@@ -35,9 +35,9 @@ case "$method" in
   efg)
     # Kahwash: the node study and every LaRC02 / Hashin run first (0.5-2 CPU-min each at 12,015
     # nodes); then the maximum-stress snapshot run at 30 deg that completes Figs 6-7 (13 CPU-min) and
-    # the LaRC02 snapshot run at 75 deg of Figs 8-9 (14 CPU-min); then maximum stress at 15-45 deg
-    # (10-50 min: they separate late); then the runs that go on to the 0.3 mm travel limit
-    # (maximum stress 60/75 deg: about 1 CPU-h each) and the rest of Figs 8-10.
+    # the LaRC02 snapshot run at 75 deg of Figs 8-9 (13 CPU-min); then maximum stress at 15-75 deg
+    # (8-37 CPU-min each: they separate late, after 50-115 um of travel; session 11) and the
+    # maximum-stress snapshot run of Figs 8-9.
     compute --case kahwash2018/table2 --case kahwash2018/table6
     compute --case kahwash2018/table4 --series efg_hashin --series time_scaling
     compute --case kahwash2018/fig06 --series hashin --series larc02

@@ -226,11 +226,14 @@ private:
   bool update_damage(GP& q) const;  // true when a new mode failed
   void apply_contact(double dt, std::vector<Vec2>& vhalf);
   void compute_internal_forces();
+  void first_piola(GP& q, Mat2& P, bool small, bool failure);  // stress update of one Gauss point
   void update_reference();
+  void build_node_gp();
   void apply_bcs(double t);
 
   Orthotropic mat_;
   Eigen::Matrix3d Qbar_;
+  Eigen::Matrix3d T_;  // stress rotation x-y -> 1-2 (Eq 52) for theta
   double theta_ = 0.0;
   RigidTool tool_;
   bool has_tool_ = false;
@@ -247,7 +250,11 @@ private:
   std::vector<char> active_;
   std::size_t nreleased_ = 0, neroded_ = 0, ncollapse_ = 0;
   double dmin0_ = 0.0;                        // initial smallest nodal distance
-  std::vector<int> node_gp_start_, node_gp_;  // node -> supporting Gauss points (CSR), on demand
+  // node -> supporting Gauss points (CSR, ascending) and the index of each one's contribution in
+  // fe_; fe_ holds the (Gauss point, node) force contributions, Gauss point g's from gp_off_[g].
+  // Rebuilt on demand after the shape functions change.
+  std::vector<int> node_gp_start_, node_gp_, node_entry_, gp_off_;
+  std::vector<Vec2> fe_;
   bool node_gp_dirty_ = true;
   std::vector<std::pair<int, int>> pairs_;    // scratch
   bool erosion_changed_ = false;

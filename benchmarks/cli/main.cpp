@@ -16,6 +16,7 @@
 #include <omp.h>
 #endif
 
+#include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/framework/run_cache.hpp"
 #include "cutbench/framework/case.hpp"
@@ -262,7 +263,30 @@ int cmd_eval(const std::string& model, const std::vector<std::string>& args, boo
   return 0;
 }
 
-int cmd_bench(const std::string& name, const std::vector<std::string>& args, int repeat, const fs::path& out) {
+// Steps a resumed run did before this process: the solvers' note "resumed from a checkpoint at
+// step N" (0 when the run did not resume).
+double resumed_steps(const RunOutput& r) {
+  const std::string tag = "resumed from a checkpoint at step ";
+  for (const auto& n : r.notes) {
+    const auto p = n.find(tag);
+    if (p != std::string::npos) return std::strtod(n.c_str() + p + tag.size(), nullptr);
+  }
+  return 0.0;
+}
+
+// `cutbench bench NAME ... --state FILE`: a solver state in the middle of a run, so that the speed
+// of the part that matters (a cut under way, not the start on a regular lattice) can be timed
+// again and again, and with different builds. Without FILE the run stops at its first checkpoint,
+// after `state_minutes`, and leaves it in FILE; with FILE it resumes from it and runs to the end.
+// The key is the solver and its parameters, not the source identity: a bench state is meant to be
+// loaded by other builds (a solver whose state layout changed rejects it with an error).
+struct BenchState {
+  std::string file;
+  double minutes = 10.0;
+};
+
+int cmd_bench(const std::string& name, const std::vector<std::string>& args, int repeat, const fs::path& out,
+              const BenchState& state) {
   json report = {{"bench", name}, {"software", software_version()}, {"date", utc_now_iso()}};
 #ifdef _OPENMP
   report["threads"] = omp_get_max_threads();
@@ -298,11 +322,58 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
     const Values params = validate_params(ModelSpec{sv->name, "", "", sv->params, {}, {}},
                                           parse_assignments(args, sv->params, name));
     Progress progress(true);
+    std::string state_key;
+    bool resume = false;
+    if (!state.file.empty()) {
+      if (!(state.minutes > 0.0)) throw InputError("--state-minutes", "must be > 0 minutes");
+      state_key = "bench state|" + sv->name;
+      char buf[64];
+      for (const auto& [k, v] : params) {
+        std::snprintf(buf, sizeof buf, "%.17g", v);
+        state_key += "|" + k + "=" + buf;
+      }
+      resume = fs::exists(state.file);
+      if (resume && !read_checkpoint({state.file, state_key, 0.0, false}, [](BinaryReader&) {}))
+        throw InputError("--state", "'" + state.file + "' is not a state of bench " + sv->name +
+                                        " with these parameters (or it is corrupt); remove it to write a new one");
+      report["state"] = {{"file", state.file}, {"mode", resume ? "resume" : "write"}};
+    }
     for (int rep = 0; rep < std::max(1, repeat); ++rep) {
       const auto t0 = std::chrono::steady_clock::now();
-      RunOutput r = sv->run(params, [&](double f, const std::string& m) { progress(f, m); });
+      RunOutput r;
+      if (!state.file.empty()) {
+        // resume: never write (the interval is effectively infinite); write: stop after the first
+        const CheckpointSpec spec{state.file, state_key, resume ? 1e300 : 60.0 * state.minutes, !resume};
+        CheckpointScope scope(spec);
+        try {
+          r = sv->run(params, [&](double f, const std::string& m) { progress(f, m); });
+        } catch (const CheckpointStop& e) {
+          const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          std::cout << name << ": state written to " << state.file << " after " << fmt(wall, 4) << " s (" << e.what()
+                    << ")\n";
+          return 0;
+        }
+        if (!resume)
+          std::cout << name << ": the run ended before " << fmt(state.minutes, 4) << " min; no state written\n";
+      } else {
+        r = sv->run(params, [&](double f, const std::string& m) { progress(f, m); });
+      }
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       json rj = {{"wall_time_s", wall}};
+      if (r.scalars.count("steps")) {
+        // steps of this process (a resumed run counts from its state) and their rate per particle
+        const double steps = r.scalars.at("steps") - resumed_steps(r);
+        rj["steps_timed"] = steps;
+        std::cout << name << " run " << rep + 1 << ": " << fmt(steps, 10) << " steps timed";
+        for (const char* count : {"particles", "nodes"})
+          if (r.scalars.count(count)) {
+            const double rate = steps * r.scalars.at(count) / wall;
+            rj[std::string(count) == "particles" ? "particle_steps_per_s" : "node_steps_per_s"] = rate;
+            std::cout << ", " << fmt(rate / 1e6, 4) << " M " << (std::string(count) == "particles" ? "particle" : "node")
+                      << "-steps/s";
+          }
+        std::cout << "\n";
+      }
       for (const auto& [k, v] : r.scalars) rj["scalars"][k] = std::isfinite(v) ? json(v) : json(nullptr);
       report["runs"].push_back(rj);
       std::cout << name << " run " << rep + 1 << ": " << fmt(wall, 4) << " s\n";
@@ -520,6 +591,11 @@ int main(int argc, char** argv) {
   bench->add_option("--repeat", bench_repeat, "Repetitions");
   bench->add_option("--out", bench_out, "Results directory (bench/<name>.json)");
   bench->add_option("-j,--threads", threads, "OpenMP threads");
+  BenchState bench_state;
+  bench->add_option("--state", bench_state.file,
+                    "Solver state file: resume from it and time the rest of the run; if it does not exist, run "
+                    "--state-minutes, write it there and stop");
+  bench->add_option("--state-minutes", bench_state.minutes, "With --state: minutes of run before the state is written (default 10)");
 
   std::string runs_dir = "reports/full_tier/runs";
   bool runs_check = false, runs_json = false;
@@ -569,7 +645,7 @@ int main(int argc, char** argv) {
       if (eval_model.empty()) throw InputError("model", "give a model name (see `cutbench eval --list`)");
       return cmd_eval(eval_model, eval_args, eval_json);
     }
-    if (*bench) return cmd_bench(bench_name, bench_args, bench_repeat, bench_out);
+    if (*bench) return cmd_bench(bench_name, bench_args, bench_repeat, bench_out, bench_state);
     if (*report) return cmd_report(report_results, report_out);
     if (*runs) {
       if (runs_cases.empty() && runs_paper.empty()) {

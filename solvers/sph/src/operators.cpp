@@ -42,18 +42,31 @@ void fill_pair_geometry(const ParticleView& p, std::vector<double>& r, std::vect
   dwdr.resize(nl.index.size());
   const double s2 = p.kernel.support() * p.kernel.support();
   const std::size_t n = p.x.size();
+  // Branch-free SIMD loop per row (both kernel pieces, selected; the values of the branching
+  // CubicSpline2D::dwdr): in a cut the inside/outside and q < 1 outcomes follow no pattern.
+  const double inv_h = p.kernel.inv_h(), sig_h = p.kernel.sigma_inv_h();
+  if (n == 0) return;
+  static_assert(sizeof(Vec2) == 2 * sizeof(double), "Vec2 must be two packed doubles");
+  const double* const x = p.x.front().data();  // x0, y0, x1, y1, ...
+  const std::uint32_t* const idx = nl.index.data();
+  double* const rr = r.data();
+  double* const dd = dwdr.data();
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double xi = x[2 * i], yi = x[2 * i + 1];
+#pragma omp simd
     for (std::size_t k = nl.begin(i); k < nl.end(i); ++k) {
-      const double r2 = (p.x[i] - p.x[nl.index[k]]).squaredNorm();
-      if (r2 >= s2) {
-        r[k] = -1.0;
-        dwdr[k] = 0.0;
-      } else {
-        r[k] = std::sqrt(r2);
-        dwdr[k] = p.kernel.dwdr(r[k]);
-      }
+      const std::size_t j = idx[k];
+      const double dx = xi - x[2 * j], dy = yi - x[2 * j + 1];
+      const double r2 = dx * dx + dy * dy;
+      const bool inside = r2 < s2;
+      const double rk = std::sqrt(r2);
+      const double q = rk * inv_h, t = 2.0 - q;
+      const double d = q < 1.0 ? sig_h * (-3.0 * q + 2.25 * q * q) : -sig_h * 0.75 * t * t;
+      rr[k] = inside ? rk : -1.0;
+      dd[k] = inside ? d : 0.0;
     }
+  }
 }
 
 double smallest_eigenvalue(const Mat2& m) {

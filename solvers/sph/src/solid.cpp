@@ -127,17 +127,24 @@ double SolidSph::workpiece_heat_content() const {
 void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) {
   // Called with nl_, x_ and rho_ of the start of the step.
   const std::size_t n = x_.size();
-  std::vector<double> vol(n);
-  for (std::size_t i = 0; i < n; ++i) vol[i] = m_[i] / rho_[i];
   const double rc = th_.heat.density * th_.heat.specific_heat;
   if (plastic_heat_at_.size() != n) plastic_heat_at_.assign(n, 0.0);
+  // plastic heat of this step: per particle in parallel, the total summed in index order (as a
+  // serial loop over every particle would: the elastic ones add exact zeros)
+  plastic_dT_q_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
-    if (t_fixed_[i]) continue;
+    if (t_fixed_[i] || plastic_dT[i] == 0.0) {
+      plastic_dT_q_[i] = 0.0;
+      continue;
+    }
     T_[i] += plastic_dT[i];
-    const double q = plastic_dT[i] * rc * vol[i];
-    plastic_heat_ += q;
+    const double q = plastic_dT[i] * rc * (m_[i] / rho_[i]);
+    plastic_dT_q_[i] = q;
     plastic_heat_at_[i] += q;
   }
+  for (std::size_t i = 0; i < n; ++i)
+    if (plastic_dT_q_[i] != 0.0) plastic_heat_ += plastic_dT_q_[i];
   th_dt_acc_ += dt;
   ++th_steps_;
   const double alpha_max = tool_thermal_ ? std::max(th_.heat.diffusivity(), tool_heat_.diffusivity())
@@ -148,6 +155,8 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   const double dt_th = th_dt_acc_ / sub;
   th_dt_acc_ = 0.0;
   th_steps_ = 0;
+  std::vector<double> vol(n);
+  for (std::size_t i = 0; i < n; ++i) vol[i] = m_[i] / rho_[i];
   fill_pair_geometry(ParticleView{x_, vol, nl_, kernel_}, heat_pair_r_, heat_pair_dwdr_);
   const ParticleView view{x_, vol, nl_, kernel_, &heat_pair_r_, &heat_pair_dwdr_};
   surface_ = detect_free_surface(view, th_.surface);
@@ -243,10 +252,12 @@ std::vector<double> SolidSph::pressure() const {
 }
 
 double SolidSph::stable_time_step() const {
-  double vmax = 0.0;
+  double vmax = 0.0;  // a maximum: the same in any order
   bool finite = true;
-  for (const auto& v : v_) {
-    const double n = v.norm();
+  const std::size_t np = v_.size();
+#pragma omp parallel for schedule(static) reduction(max : vmax) reduction(&& : finite) if (np >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < np; ++i) {
+    const double n = v_[i].norm();
     finite = finite && std::isfinite(n);
     vmax = std::max(vmax, n);
   }
@@ -263,7 +274,11 @@ void SolidSph::update_neighbours() {
   bool rebuild = x_listed_.size() != x_.size() || skin <= 0.0;
   if (!rebuild) {
     const double lim2 = 0.25 * skin * skin;
-    for (std::size_t i = 0; i < x_.size() && !rebuild; ++i) rebuild = (x_[i] - x_listed_[i]).squaredNorm() > lim2;
+    const std::size_t n = x_.size();
+    bool moved = false;
+#pragma omp parallel for schedule(static) reduction(|| : moved) if (n >= detail::kOmpMinParticles)
+    for (std::size_t i = 0; i < n; ++i) moved = moved || (x_[i] - x_listed_[i]).squaredNorm() > lim2;
+    rebuild = moved;
   }
   if (!rebuild) return;
   rebuild_neighbours(x_);
@@ -283,7 +298,11 @@ void SolidSph::rebuild_neighbours(const std::vector<Vec2>& at) {
     half_index_.insert(half_index_.end(), std::upper_bound(first, last, static_cast<std::uint32_t>(i)), last);
     half_offset_[i + 1] = half_index_.size();
   }
-  pairs_.resize(half_index_.size());
+  pair_gx_.resize(half_index_.size());
+  pair_gy_.resize(half_index_.size());
+  pair_wr_.resize(half_index_.size());
+  pair_j_.resize(half_index_.size());
+  pair_count_.resize(n);
   x_listed_ = at;
   ++builds_;
 }
@@ -431,56 +450,104 @@ void SolidSph::accelerations() {
   // Each pair (i < j) is evaluated once: acc_i += m_j T_ij gradW_ij, acc_j -= m_i T_ij gradW_ij
   // (T_ij symmetric, gradW_ji = -gradW_ij). Threads accumulate into private buffers that are summed
   // in thread order: deterministic for a fixed thread count.
-  const bool visc = opt_.alpha_visc > 0.0 || opt_.beta_visc > 0.0;
+  //
+  // Per row: a branch-free scalar loop picks the listed pairs inside the support (the Verlet skin
+  // lists about 35 % more), then a SIMD loop without branches evaluates them (the j of a row are
+  // distinct, so the lanes are independent): both kernel pieces are computed and selected with a
+  // mask, and the viscosity is selected for approaching pairs. In a cut the inside/outside and
+  // q < 1 outcomes follow no pattern, so branches there were mispredicted at a high rate
+  // (solvers/sph/README.md, known problem 13). The SIMD loop writes each pair's force into small
+  // buffers; a scalar loop then adds them to i (in pair order) and to j. Every operation is the
+  // one of the scalar code with branches, in the same order, so the results are bit for bit those
+  // of that code, whatever the vector width. The row's inside pairs (j, grad W, W / rhobar) are
+  // kept, compacted, for the rate pass of the next step.
+  const double vis = opt_.alpha_visc > 0.0 || opt_.beta_visc > 0.0 ? 1.0 : 0.0, artf = eps_art > 0.0 ? 1.0 : 0.0;
   const double inv_wdx = 1.0 / w_dx_;
   const double eta2 = 0.01 * h * h, minus_alpha_c0 = -opt_.alpha_visc * c0, beta = opt_.beta_visc;
+  const double inv_h = kernel_.inv_h(), sig = kernel_.sigma(), sig_h = kernel_.sigma_inv_h();
+  const double xs = opt_.xsph > 0.0 ? 1.0 : 0.0;
   const ParticleData* const pd = pdata_.data();
   const std::uint32_t* const hidx = half_index_.data();
   const std::size_t* const hoff = half_offset_.data();
-  PairData* const pairs = pairs_.data();
-  const CubicSpline2D kernel = kernel_;
+  double* const pgx = pair_gx_.data();
+  double* const pgy = pair_gy_.data();
+  double* const pwr = pair_wr_.data();
+  std::uint32_t* const cidx = pair_j_.data();
+  std::uint32_t* const ccount = pair_count_.data();
   auto row = [=](std::size_t i, Vec2* acc) {
-    const ParticleData fi = pd[i];
+    // the captured pointers as locals: GCC does not vectorise loads through the closure
+    const ParticleData* const P = pd;
+    const std::uint32_t* const J = hidx;
+    double* const GX = pgx;
+    double* const GY = pgy;
+    double* const WR = pwr;
+    std::uint32_t* const CJ = cidx;
+    const ParticleData fi = P[i];
     double ax = 0.0, ay = 0.0;
-    for (std::size_t k = hoff[i]; k < hoff[i + 1]; ++k) {
-      const std::size_t j = hidx[k];
-      const ParticleData& fj = pd[j];
-      const double xx = fi.x - fj.x, xy = fi.y - fj.y;
-      const double r2 = xx * xx + xy * xy;
-      if (r2 >= support2) {  // listed through the Verlet skin, outside the kernel support
-        pairs[k] = PairData{0.0, 0.0, 0.0};
-        continue;
+    constexpr std::size_t kChunk = 64;
+    std::uint32_t sel[kChunk];
+    double fx[kChunk], fy[kChunk], bx[kChunk], by[kChunk];
+    std::size_t out = hoff[i];  // next slot of the row's compacted pair list
+    for (std::size_t b0 = hoff[i]; b0 < hoff[i + 1]; b0 += kChunk) {
+      const std::size_t b1 = std::min(hoff[i + 1], b0 + kChunk);
+      // the listed pairs inside the support, in list order (branch-free compaction)
+      std::size_t m = 0;
+      for (std::size_t k = b0; k < b1; ++k) {
+        const std::uint32_t j = J[k];
+        const double xx = fi.x - P[j].x, xy = fi.y - P[j].y;
+        sel[m] = j;
+        m += xx * xx + xy * xy < support2 ? 1 : 0;
       }
-      const double r = std::sqrt(r2);
-      double wij, dw;
-      kernel.value_dwdr(r, wij, dw);
-      const double dwr = dw / r;
-      const double gx = dwr * xx, gy = dwr * xy;
-      pairs[k] = PairData{gx, gy, wij};
-      double txx = fi.sxx + fj.sxx, txy = fi.sxy + fj.sxy, tyy = fi.syy + fj.syy;
-      const double vr = (fi.vx - fj.vx) * xx + (fi.vy - fj.vy) * xy;
-      if (visc) {  // Monaghan viscosity on approaching pairs (vr < 0), selected without a branch
-        const double mu = h * vr / (r2 + eta2);
+#pragma omp simd
+      for (std::size_t u = 0; u < m; ++u) {
+        const ParticleData& fj = P[sel[u]];
+        const double xx = fi.x - fj.x, xy = fi.y - fj.y;
+        const double r2 = xx * xx + xy * xy;
+        const double r = std::sqrt(r2);
+        // cubic spline (CubicSpline2D::value_dwdr): both pieces, then selected
+        const double q = r * inv_h, t = 2.0 - q;
+        const bool near = q < 1.0;
+        const double w_near = sig * (1.0 - 1.5 * q * q + 0.75 * q * q * q), w_far = sig * 0.25 * t * t * t;
+        const double d_near = sig_h * (-3.0 * q + 2.25 * q * q), d_far = -sig_h * 0.75 * t * t;
+        const double wij = near ? w_near : w_far;
+        const double dw = near ? d_near : d_far;
+        const double dwr = dw / r;
+        const double gx = dwr * xx, gy = dwr * xy;
         const double rhobar = 0.5 * (fi.rho + fj.rho);
+        GX[out + u] = gx;
+        GY[out + u] = gy;
+        WR[out + u] = xs * (wij / rhobar);  // XSPH weight of the rate pass (xs = 1, or 0 without XSPH)
+        CJ[out + u] = sel[u];
+        double txx = fi.sxx + fj.sxx, txy = fi.sxy + fj.sxy, tyy = fi.syy + fj.syy;
+        // Monaghan viscosity on approaching pairs (vr < 0)
+        const double vr = (fi.vx - fj.vx) * xx + (fi.vy - fj.vy) * xy;
+        const double mu = h * vr / (r2 + eta2);
         const double pi0 = (minus_alpha_c0 * mu + beta * mu * mu) / rhobar;
-        const double pi = vr < 0.0 ? pi0 : 0.0;
+        const double pi = vr < 0.0 ? vis * pi0 : 0.0;  // vis = 1 or 0: exact
         txx -= pi;
         tyy -= pi;
-      }
-      if (eps_art > 0.0) {
         const double f = wij * inv_wdx;
         const double f2 = f * f;
-        const double f4 = f2 * f2;
+        const double f4 = artf * (f2 * f2);  // artf = 1 or 0 (then R = 0 too): exact
         txx += f4 * (fi.axx + fj.axx);
         txy += f4 * (fi.axy + fj.axy);
         tyy += f4 * (fi.ayy + fj.ayy);
+        const double tgx = txx * gx + txy * gy, tgy = txy * gx + tyy * gy;
+        fx[u] = fj.m * tgx;
+        fy[u] = fj.m * tgy;
+        bx[u] = fi.m * tgx;
+        by[u] = fi.m * tgy;
       }
-      const double tgx = txx * gx + txy * gy, tgy = txy * gx + tyy * gy;
-      ax += fj.m * tgx;
-      ay += fj.m * tgy;
-      acc[j].x() -= fi.m * tgx;
-      acc[j].y() -= fi.m * tgy;
+      for (std::size_t u = 0; u < m; ++u) {
+        ax += fx[u];
+        ay += fy[u];
+        Vec2& aj = acc[sel[u]];
+        aj.x() -= bx[u];
+        aj.y() -= by[u];
+      }
+      out += m;
     }
+    ccount[i] = static_cast<std::uint32_t>(out - hoff[i]);
     acc[i].x() += ax;
     acc[i].y() += ay;
   };
@@ -515,72 +582,95 @@ void SolidSph::step(double dt) {
   if (!(dt > 0.0)) throw InputError("dt", "time step must be positive");
   const std::size_t n = x_.size();
   if (!have_accel_) accelerations();
-  // kick
+  // kick, and the velocities after it into the packed particle data (positions, densities and
+  // volumes are those of x^n, filled by accelerations())
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
-  for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
+  for (std::size_t i = 0; i < n; ++i) {
+    v_[i] += 0.5 * dt * a_[i];
+    pdata_[i].vx = v_[i].x();
+    pdata_[i].vy = v_[i].y();
+  }
   // rates on x^n with v^{n+1/2} (the pair geometry of accelerations() belongs to x^n)
   const double G = mat_.shear();
   rho_new_.resize(n);
   s_new_.resize(n);
-  plastic_dT_.assign(n, 0.0);
-  // velocities after the kick into the packed particle data (positions, densities and volumes are
-  // those of x^n, filled by accelerations())
-#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
-  for (std::size_t i = 0; i < n; ++i) {
-    pdata_[i].vx = v_[i].x();
-    pdata_[i].vy = v_[i].y();
-  }
+  plastic_dT_.resize(n);  // set for every particle by the constitutive update
   auto& xsph = xsph_;
   auto& rho_new = rho_new_;
   auto& s_new = s_new_;
   auto& plastic_dT = plastic_dT_;
   const double chi_rc =
       thermal_ ? th_.taylor_quinney / (th_.heat.density * th_.heat.specific_heat) : 0.0;
-  const bool corr = opt_.correct_velocity_gradient, use_xsph = opt_.xsph > 0.0;
+  const bool corr = opt_.correct_velocity_gradient;
   // Pair pass over the half list (symmetric): with dv = v_j - v_i and gradW_ji = -gradW_ij,
   //   (grad v)_i += V_j dv (x) gradW_ij,  (grad v)_j += V_i dv (x) gradW_ij,
   //   L_i -= V_j x_ij (x) gradW_ij,       L_j -= V_i x_ij (x) gradW_ij,
   //   xs_i += m_j / rhobar W dv,           xs_j -= m_i / rhobar W dv.
   const ParticleData* const pd = pdata_.data();
-  const std::uint32_t* const hidx = half_index_.data();
   const std::size_t* const hoff = half_offset_.data();
-  const PairData* const pairs = pairs_.data();
+  const double* const pgx = pair_gx_.data();
+  const double* const pgy = pair_gy_.data();
+  const double* const pwr = pair_wr_.data();
+  const std::uint32_t* const cidx = pair_j_.data();
+  const std::uint32_t* const ccount = pair_count_.data();
+  // As in accelerations(): a SIMD loop over the row's pairs inside the support (compacted by
+  // accelerations()) writes the contributions to i and j into buffers, scalar loops add them in
+  // pair order: bit for bit the results of the scalar loop that skipped the pairs outside. The
+  // renormalisation matrix L (optional) is summed in a plain loop.
   auto row = [=](std::size_t i, RateAcc* ra, Mat2* lr) {
-    const ParticleData fi = pd[i];
+    const ParticleData* const P = pd;  // locals: see accelerations()
+    const std::uint32_t* const J = cidx;  // the compacted inside pairs of accelerations()
+    const std::uint32_t* const CN = ccount;
+    const double* const GX = pgx;
+    const double* const GY = pgy;
+    const double* const WR = pwr;
+    const ParticleData fi = P[i];
     RateAcc acc_i{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    Mat2 lr_i = Mat2::Zero();
-    for (std::size_t k = hoff[i]; k < hoff[i + 1]; ++k) {
-      const PairData pk = pairs[k];
-      if (pk.w == 0.0) continue;  // outside the support (Verlet skin): W = 0, grad W = 0
-      const std::size_t j = hidx[k];
-      const ParticleData& fj = pd[j];
-      const double dvx = fj.vx - fi.vx, dvy = fj.vy - fi.vy;
-      const double o00 = dvx * pk.gx, o01 = dvx * pk.gy, o10 = dvy * pk.gx, o11 = dvy * pk.gy;
-      acc_i.g00 += fj.vol * o00;
-      acc_i.g01 += fj.vol * o01;
-      acc_i.g10 += fj.vol * o10;
-      acc_i.g11 += fj.vol * o11;
-      RateAcc& aj = ra[j];
-      aj.g00 += fi.vol * o00;
-      aj.g01 += fi.vol * o01;
-      aj.g10 += fi.vol * o10;
-      aj.g11 += fi.vol * o11;
-      if (corr) {
-        const Mat2 ol = Vec2(fi.x - fj.x, fi.y - fj.y) * Vec2(pk.gx, pk.gy).transpose();
-        lr_i.noalias() -= fj.vol * ol;
-        lr[j].noalias() -= fi.vol * ol;
-      }
-      if (use_xsph) {
-        const double c = pk.w / (0.5 * (fi.rho + fj.rho));
+    constexpr std::size_t kChunk = 64;
+    double b00[kChunk], b01[kChunk], b10[kChunk], b11[kChunk], bsx[kChunk], bsy[kChunk];
+    double c00[kChunk], c01[kChunk], c10[kChunk], c11[kChunk], csx[kChunk], csy[kChunk];
+    const std::size_t row_end = hoff[i] + CN[i];
+    for (std::size_t b0 = hoff[i]; b0 < row_end; b0 += kChunk) {
+      const std::size_t b1 = std::min(row_end, b0 + kChunk);
+#pragma omp simd
+      for (std::size_t k = b0; k < b1; ++k) {
+        const ParticleData& fj = P[J[k]];
+        const double gx = GX[k], gy = GY[k];
+        const double dvx = fj.vx - fi.vx, dvy = fj.vy - fi.vy;
+        const double o00 = dvx * gx, o01 = dvx * gy, o10 = dvy * gx, o11 = dvy * gy;
+        const double c = WR[k];
         const double wx = c * dvx, wy = c * dvy;
-        acc_i.sx += fj.m * wx;
-        acc_i.sy += fj.m * wy;
-        aj.sx -= fi.m * wx;
-        aj.sy -= fi.m * wy;
+        const std::size_t u = k - b0;
+        c00[u] = fj.vol * o00;
+        c01[u] = fj.vol * o01;
+        c10[u] = fj.vol * o10;
+        c11[u] = fj.vol * o11;
+        csx[u] = fj.m * wx;  // wx = 0 without XSPH (weights stored as 0)
+        csy[u] = fj.m * wy;
+        b00[u] = fi.vol * o00;
+        b01[u] = fi.vol * o01;
+        b10[u] = fi.vol * o10;
+        b11[u] = fi.vol * o11;
+        bsx[u] = -(fi.m * wx);
+        bsy[u] = -(fi.m * wy);
+      }
+      for (std::size_t k = b0; k < b1; ++k) {
+        const std::size_t u = k - b0;
+        acc_i += RateAcc{c00[u], c01[u], c10[u], c11[u], csx[u], csy[u]};
+        ra[J[k]] += RateAcc{b00[u], b01[u], b10[u], b11[u], bsx[u], bsy[u]};
       }
     }
     ra[i] += acc_i;
-    if (corr) lr[i] += lr_i;
+    if (corr) {
+      Mat2 lr_i = Mat2::Zero();
+      for (std::size_t k = hoff[i]; k < row_end; ++k) {
+        const std::size_t j = J[k];
+        const Mat2 ol = Vec2(fi.x - pd[j].x, fi.y - pd[j].y) * Vec2(GX[k], GY[k]).transpose();
+        lr_i.noalias() -= pd[j].vol * ol;
+        lr[j].noalias() -= fi.vol * ol;
+      }
+      lr[i] += lr_i;
+    }
   };
   if (last_dep_.size() != n) last_dep_.assign(n, 0.0);
   const RateAcc zero{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
@@ -620,7 +710,10 @@ void SolidSph::step(double dt) {
   }
   // Constitutive update per particle. Plane strain: S has components xx, yy, zz, xy (the
   // out-of-plane shears stay zero); spin W = [[0, w], [-w, 0]] with w = (grad v)_[xy] antisymmetric part.
-#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  // Chunks of 256 particles dealt round-robin: the yielding particles (radial return with pow and
+  // log, ~10 % of a cutting step) lie in the chip and shear zone, one contiguous range of indices
+  // that a plain static schedule gave to one thread. Per particle, so the same values either way.
+#pragma omp parallel for schedule(static, 256) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     const RateAcc& ra = racc_[i];
     Mat2 gv;
@@ -640,6 +733,7 @@ void SolidSph::step(double dt) {
     s(0, 1) = s(1, 0) = sxy + dt * (2.0 * G * dxy + w * (syy - sxx));
     // Elastic without evaluating J-C: sigma_y >= A (1 - T*^m) >= A m (1 - T*) for m <= 1 (T*^m is
     // concave, below its tangent at 1) or A (1 - T*) for m > 1; the rate factor is >= 1.
+    plastic_dT[i] = 0.0;
     if (mat_.plastic) {
       const double q = std::sqrt(1.5 * (s(0, 0) * s(0, 0) + s(1, 1) * s(1, 1) + s(2, 2) * s(2, 2) +
                                         2.0 * s(0, 1) * s(0, 1)));
@@ -729,14 +823,28 @@ void SolidSph::penalty_contact(double dt) {
     contact_gap_.assign(x_.size(), 0.0);
     contact_p_.assign(x_.size(), Vec2::Zero());
   }
-  for (std::size_t i = 0; i < x_.size(); ++i) {
+  // Screening and the tool's signed distance per particle in parallel (pure), then the contacts
+  // in index order on one thread (forces, friction heat and the contact list in the same order as
+  // a serial loop).
+  const std::size_t n = x_.size();
+  contact_sd_.resize(n);
+  contact_eval_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
+  for (std::size_t i = 0; i < n; ++i) {
+    contact_eval_[i] = 0;
     if (fixed_[i]) continue;
     const Vec2 p = x_[i] - tool_pos;
     // screening: the signed distance is 1-Lipschitz, so g(p) >= gap_last - |p - p_last| > 0
     // (friction history already zero from that evaluation); margin against round-off
     const double gl = contact_gap_[i];
     if (gl > 0.0 && (p - contact_p_[i]).squaredNorm() < 0.81 * gl * gl) continue;
-    const SignedDistance sd = tool_->at(p);
+    contact_sd_[i] = tool_->at(p);
+    contact_eval_[i] = 1;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!contact_eval_[i]) continue;
+    const Vec2 p = x_[i] - tool_pos;
+    const SignedDistance& sd = contact_sd_[i];
     const double g = sd.distance - offset;
     contact_p_[i] = p;
     contact_gap_[i] = g;

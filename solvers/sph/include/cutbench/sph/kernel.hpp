@@ -18,6 +18,9 @@ public:
   explicit CubicSpline2D(double h);
 
   double h() const { return h_; }
+  double inv_h() const { return inv_h_; }
+  double sigma() const { return sigma_; }  // 10 / (7 pi h^2)
+  double sigma_inv_h() const { return sigma_inv_h_; }
   double support() const { return 2.0 * h_; }
   double value(double r) const {
     const double q = r * inv_h_;

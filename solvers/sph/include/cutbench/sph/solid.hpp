@@ -163,13 +163,12 @@ private:
   // compressed. Both mechanical passes run over it once per pair with symmetric updates.
   std::vector<std::size_t> half_offset_;
   std::vector<std::uint32_t> half_index_;
-  // Per half pair: grad_i W_ij and W_ij at the current positions (filled by accelerations(),
-  // reused by the rate pass of the next step: same positions); W = 0 marks a pair outside the
-  // support (listed through the Verlet skin).
-  struct PairData {
-    double gx, gy, w;
-  };
-  std::vector<PairData> pairs_;
+  // The half pairs inside the kernel support at the current positions, compacted per row (row i
+  // holds pair_count_[i] of them from half_offset_[i] on, in list order), one array per component
+  // (SIMD loops): j, grad_i W_ij and W_ij / rhobar_ij (0 without XSPH). Filled by accelerations(),
+  // reused by the rate pass of the next step (same positions and densities).
+  std::vector<double> pair_gx_, pair_gy_, pair_wr_;
+  std::vector<std::uint32_t> pair_j_, pair_count_;
   // per-particle data of the pair loops, packed for locality: position, velocity, density, mass,
   // volume, sigma/rho^2 and artificial stress R, in-plane (xx, xy, yy)
   struct ParticleData {
@@ -194,7 +193,7 @@ private:
   std::vector<Vec2> acc_, xsph_;
   std::vector<RateAcc> racc_;
   std::vector<Mat2> lren_;
-  std::vector<double> rho_new_, plastic_dT_;
+  std::vector<double> rho_new_, plastic_dT_, plastic_dT_q_;
   std::vector<double> last_dep_;  // plastic strain increment of each particle's last plastic step
   std::vector<std::vector<Vec2>> acc_part_;
   std::vector<std::vector<RateAcc>> racc_part_;
@@ -205,6 +204,8 @@ private:
   std::vector<double> heat_pair_r_, heat_pair_dwdr_;  // pair geometry cache of the conduction update
   std::vector<Vec2> contact_p_;
   std::vector<double> contact_gap_;
+  std::vector<SignedDistance> contact_sd_;  // per step: the tool's signed distance where evaluated
+  std::vector<char> contact_eval_;
   std::size_t builds_ = 0;
   double time_ = 0.0;
   std::size_t steps_ = 0;

@@ -10,9 +10,18 @@ import re
 import sys
 
 
+NOTE = b"run stored in the run cache: "
+
+
 def normalise(data: bytes) -> bytes:
     data = re.sub(rb"source [0-9a-f]{64}", b"source X", data)
-    return re.sub(rb".{8}run stored in the run cache: [^\x00]*?OpenMP [0-9.]+", b"NOTE", data, flags=re.S)
+    # every provenance note: a string, stored as its length (8 bytes, little endian) and its bytes
+    out, pos = bytearray(), 0
+    while (k := data.find(NOTE, pos)) >= 8:
+        length = int.from_bytes(data[k - 8:k], "little")
+        out += data[pos:k - 8] + b"NOTE"
+        pos = k + length
+    return bytes(out + data[pos:])
 
 
 def main() -> int:

@@ -326,12 +326,7 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
     bool resume = false;
     if (!state.file.empty()) {
       if (!(state.minutes > 0.0)) throw InputError("--state-minutes", "must be > 0 minutes");
-      state_key = "bench state|" + sv->name;
-      char buf[64];
-      for (const auto& [k, v] : params) {
-        std::snprintf(buf, sizeof buf, "%.17g", v);
-        state_key += "|" + k + "=" + buf;
-      }
+      state_key = "bench state|" + sv->name + params_key(params);
       resume = fs::exists(state.file);
       if (resume && !read_checkpoint({state.file, state_key, 0.0, false}, [](BinaryReader&) {}))
         throw InputError("--state", "'" + state.file + "' is not a state of bench " + sv->name +

@@ -76,6 +76,11 @@ std::string run_key(const std::string& solver, const Values& params) {
   const std::string identity = solver_identity(solver);
   std::string key = solver + "|" +
                     (identity.empty() ? software_version() + "|build " + build_identity() : "source " + identity);
+  return key + params_key(params);
+}
+
+std::string params_key(const Values& params) {
+  std::string key;
   char buf[64];
   for (const auto& [name, value] : params) {
     std::snprintf(buf, sizeof buf, "%.17g", value);

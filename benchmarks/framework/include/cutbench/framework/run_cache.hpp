@@ -32,6 +32,8 @@ const std::string& build_identity();
 
 // Key text and file name (<solver>-<16 hex digits>.run) of one solver run.
 std::string run_key(const std::string& solver, const Values& params);
+// "|name=value" for every parameter (17 significant digits): the parameter part of run_key.
+std::string params_key(const Values& params);
 std::string run_file_name(const std::string& solver, const std::string& key);
 
 // Binary round trip of a RunOutput (tables, snapshots, scalars with units, notes).

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cutbench/common/errors.hpp"
+#include "parallel.hpp"
 
 namespace cutbench::sph {
 
@@ -67,6 +68,7 @@ void heat_masks(const NeighbourList& nl, const SurfaceDetection& surface, const 
   const std::size_t n = nl.size();
   loss.assign(n, 0);
   use_fmfs.assign(n, 0);
+#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     loss[i] = surface.surface[i] && !fixed[i];
     use_fmfs[i] = !surface.surface[i] && surface.lambda[i] > lambda_interior;

@@ -157,8 +157,8 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   th_steps_ = 0;
   std::vector<double> vol(n);
   for (std::size_t i = 0; i < n; ++i) vol[i] = m_[i] / rho_[i];
-  fill_pair_geometry(ParticleView{x_, vol, nl_, kernel_}, heat_pair_r_, heat_pair_dwdr_);
-  const ParticleView view{x_, vol, nl_, kernel_, &heat_pair_r_, &heat_pair_dwdr_};
+  fill_pair_cache(ParticleView{x_, vol, nl_, kernel_}, heat_pairs_);
+  const ParticleView view{x_, vol, nl_, kernel_, &heat_pairs_};
   surface_ = detect_free_surface(view, th_.surface);
   std::vector<char> use_fmfs, loss;
   heat_masks(nl_, surface_, t_fixed_, th_.brookshaw_band, th_.surface.lambda_interior, use_fmfs, loss);

@@ -14,7 +14,7 @@ std::size_t SurfaceDetection::count() const {
 }
 
 SurfaceDetection detect_free_surface(const ParticleView& p, const SurfaceOptions& options) {
-  const std::vector<Mat2> l = renormalisation_matrices(p);
+  detail::check_view(p);
   const std::size_t n = p.x.size();
   SurfaceDetection out;
   out.surface.assign(n, 0);
@@ -22,23 +22,21 @@ SurfaceDetection detect_free_surface(const ParticleView& p, const SurfaceOptions
   out.normal.assign(n, Vec2::Zero());
   const double h = p.kernel.h();
   const double sqrt2h = std::sqrt(2.0) * h;
-  const double s2 = p.kernel.support() * p.kernel.support();
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
-    const double lam = smallest_eigenvalue(l[i]);
-    out.lambda[i] = lam;
-    // Normal from the kernel-gradient sum, renormalised where L is invertible.
+    // The renormalisation matrix L (as renormalisation_matrices()) and the kernel-gradient sum s
+    // in one pass; the normal is s renormalised where L is invertible.
+    Mat2 l = Mat2::Zero();
     Vec2 s = Vec2::Zero();
-    for (std::size_t k = p.neighbours.begin(i); k < p.neighbours.end(i); ++k) {
-      const std::size_t j = p.neighbours.index[k];
-      Vec2 xij;
-      double r, dw;
-      // outside the support (lists may carry a skin)
-      if (!detail::pair_geometry(p, i, j, k, s2, xij, r, dw)) continue;
-      s.noalias() += ((dw / r) * xij) * p.volume[j];
-    }
+    detail::for_each_pair(p, i, [&](std::size_t j, const Vec2& xij, double, double, double dwr, const Vec2&) {
+      const Vec2 g = dwr * xij;
+      l.noalias() -= (xij * g.transpose()) * p.volume[j];
+      s.noalias() += g * p.volume[j];
+    });
+    const double lam = smallest_eigenvalue(l);
+    out.lambda[i] = lam;
     Vec2 nu = -s;
-    if (std::abs(l[i].determinant()) > 1e-12) nu = -(l[i].inverse() * s);
+    if (std::abs(l.determinant()) > 1e-12) nu = -(l.inverse() * s);
     const double nn = nu.norm();
     if (nn > 0.0 && std::isfinite(nn)) out.normal[i] = nu / nn;
 

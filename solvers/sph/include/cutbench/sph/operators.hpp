@@ -6,6 +6,7 @@
 // Conventions: x_ij = x_i - x_j, r_ij = |x_ij|, e_ij = x_ij / r_ij, grad W_ij = dW/dr e_ij (the
 // gradient with respect to x_i), V_j = m_j / rho_j, sums over neighbours j != i.
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "cutbench/sph/kernel.hpp"
@@ -13,37 +14,61 @@
 
 namespace cutbench::sph {
 
+struct PairCache;
+
 // Non-owning view of a particle configuration; everything it refers to must outlive it.
 struct ParticleView {
   const std::vector<Vec2>& x;
   const std::vector<double>& volume;
   const NeighbourList& neighbours;
   const CubicSpline2D& kernel;
-  // Optional pair geometry cache (per listed pair k: r = |x_ij| and dW/dr(r), r < 0 for pairs
-  // outside the support), filled by fill_pair_geometry() for this configuration. The operators
-  // then skip the square root and kernel evaluation and give the same values bit for bit.
-  const std::vector<double>* pair_r = nullptr;
-  const std::vector<double>* pair_dwdr = nullptr;
+  // Optional pair cache of this configuration (fill_pair_cache()): the operators then read the
+  // pairs inside the support from it, with no test, instead of testing every listed pair, and give
+  // the same values bit for bit.
+  const PairCache* pairs = nullptr;
 };
 
-// Fill the pair geometry cache of ParticleView for the positions and list of `p`.
-void fill_pair_geometry(const ParticleView& p, std::vector<double>& r, std::vector<double>& dwdr);
+// The listed pairs of a configuration that lie inside the kernel support, compacted per row in
+// list order: row i's pairs are at [neighbours.begin(i), neighbours.begin(i) + count[i]). For each:
+// the neighbour j, r = |x_ij|, dW/dr, dW/dr / r and e_ij = x_ij / r (the same floating-point numbers
+// as the scalar evaluation with CubicSpline2D::dwdr).
+struct PairCache {
+  std::vector<std::uint32_t> count, j;
+  std::vector<double> r, dw, dwr, ex, ey;
+};
+
+// Fill `cache` for the positions and list of `p` (p.pairs is not read).
+void fill_pair_cache(const ParticleView& p, PairCache& cache);
 
 namespace detail {
-// Pair k (i, j) of the view's list: x_ij, r and dW/dr; false outside the kernel support.
-inline bool pair_geometry(const ParticleView& p, std::size_t i, std::size_t j, std::size_t k, double s2, Vec2& xij,
-                          double& r, double& dw) {
-  xij = p.x[i] - p.x[j];
-  if (p.pair_r) {
-    r = (*p.pair_r)[k];
-    dw = (*p.pair_dwdr)[k];
-    return r >= 0.0;
+// Throws InputError when the view's arrays differ in size.
+void check_view(const ParticleView& p);
+
+// Call f(j, x_ij, r, dW/dr, dW/dr / r, e_ij) for every pair of row i inside the kernel support, in list
+// order: from the view's pair cache when it has one, else by testing each listed pair.
+template <class F>
+inline void for_each_pair(const ParticleView& p, std::size_t i, F&& f) {
+  const Vec2 xi = p.x[i];
+  const std::size_t b = p.neighbours.begin(i);
+  if (p.pairs) {
+    const PairCache& c = *p.pairs;
+    const std::size_t e = b + c.count[i];
+    for (std::size_t k = b; k < e; ++k) {
+      const std::size_t j = c.j[k];
+      f(j, Vec2(xi - p.x[j]), c.r[k], c.dw[k], c.dwr[k], Vec2(c.ex[k], c.ey[k]));
+    }
+    return;
   }
-  const double r2 = xij.squaredNorm();
-  if (r2 >= s2) return false;
-  r = std::sqrt(r2);
-  dw = p.kernel.dwdr(r);
-  return true;
+  const double s2 = p.kernel.support() * p.kernel.support();
+  for (std::size_t k = b; k < p.neighbours.end(i); ++k) {
+    const std::size_t j = p.neighbours.index[k];
+    const Vec2 xij = xi - p.x[j];
+    const double r2 = xij.squaredNorm();
+    if (r2 >= s2) continue;  // outside the support (lists may carry a skin)
+    const double r = std::sqrt(r2);
+    const double dw = p.kernel.dwdr(r);
+    f(j, xij, r, dw, dw / r, Vec2(xij / r));
+  }
 }
 }  // namespace detail
 

@@ -201,7 +201,7 @@ private:
   // contact screening: relative position (particle - tool) and gap at the last evaluation of the
   // tool's signed distance; the distance is 1-Lipschitz, so while |p - p_last| < gap_last the
   // particle cannot touch the tool and the evaluation is skipped (exact)
-  std::vector<double> heat_pair_r_, heat_pair_dwdr_;  // pair geometry cache of the conduction update
+  PairCache heat_pairs_;  // the pairs inside the support in the conduction update
   std::vector<Vec2> contact_p_;
   std::vector<double> contact_gap_;
   std::vector<SignedDistance> contact_sd_;  // per step: the tool's signed distance where evaluated

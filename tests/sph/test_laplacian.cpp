@@ -59,8 +59,6 @@ BOOST_AUTO_TEST_CASE(renormalisation_matrix_is_identity_inside) {
   BOOST_TEST(smallest_eigenvalue(m) == 1.0, tt::tolerance(1e-14));
 }
 
-// FMFS must be exact for any quadratic (cross term included), with unequal volumes and a jittered
-// lattice, at every particle including corners; the FMFS gradient exact for linear fields.
 // The pair cache (used by the cutting solver's conduction update) must give the values of the
 // uncached operators bit for bit: the same pairs, in the same order, with the same numbers.
 BOOST_AUTO_TEST_CASE(pair_cache_gives_identical_values) {
@@ -104,6 +102,8 @@ BOOST_AUTO_TEST_CASE(pair_cache_gives_identical_values) {
   BOOST_TEST(regular > x.size() / 2);
 }
 
+// FMFS must be exact for any quadratic (cross term included), with unequal volumes and a jittered
+// lattice, at every particle including corners; the FMFS gradient exact for linear fields.
 BOOST_AUTO_TEST_CASE(fmfs_exact_for_general_quadratics) {
   const std::size_t n = 17;
   auto x = rectangle_lattice(n, n + 4, -0.3, 1.3, 0.2, 2.2);

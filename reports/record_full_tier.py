@@ -5,8 +5,12 @@ The full tier (paper resolution) takes CPU-hours and is not part of the main job
 `cutbench run --tier full --out DIR` this script copies each full-tier case record
 DIR/<paper>/<item>.json (checks, values, statuses, software version, date, wall time) to
 reports/full_tier/<paper>/<item>.json, adding a `recorded` block that says how the run was made
-(binary commit, threads, run cache, machine). `make_report.py` draws these records next to the
-quick-tier checks of each case. A later record of the same case replaces the earlier one.
+(binary commit, threads, run cache, machine), and the data its plots need as
+reports/full_tier/<paper>/<item>.h5: the series tables and histories of DIR/<paper>/<item>.h5 and
+only the snapshots the case's plots draw (their fields stored in single precision), so that the
+report draws every plot from the paper-resolution run. These records are the paper-resolution
+verdicts that `cutbench list` and the report lead with. A later record of the same case replaces
+the earlier one.
 
     /usr/bin/python3 reports/record_full_tier.py --results DIR --how "binary dbf0aff, 1 thread, ..."
 """
@@ -15,6 +19,9 @@ import datetime
 import json
 import os
 import sys
+import tomllib
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def fail(msg):
@@ -28,6 +35,56 @@ def write_atomic(path, obj):
         json.dump(obj, f, indent=1, sort_keys=True)
         f.write("\n")
     os.replace(tmp, path)
+
+
+def plotted_snapshots(case_id):
+    """(series, run, snapshot) triples the case's snapshot plots draw; snapshot may be negative."""
+    with open(os.path.join(ROOT, "benchmarks", case_id + ".toml"), "rb") as f:
+        case = tomllib.load(f)
+    out = set()
+    for p in case.get("plots", []):
+        if p.get("kind") == "snapshot":
+            out.add((p["series"], int(p.get("run", 0)), int(p.get("snapshot", -1))))
+    return out
+
+
+def slim_copy(src, dst, keep):
+    """Copy a results HDF5 without the snapshots no plot draws; snapshot fields as float32."""
+    import h5py
+    import numpy as np
+
+    def copy_attrs(a, b):
+        for k, v in a.attrs.items():
+            b.attrs[k] = v
+
+    tmp = dst + ".tmp"
+    with h5py.File(src, "r") as fin, h5py.File(tmp, "w") as fout:
+        copy_attrs(fin, fout)
+
+        def walk(gin, gout, path):
+            copy_attrs(gin, gout)
+            for name, obj in gin.items():
+                sub = path + "/" + name
+                if isinstance(obj, h5py.Group):
+                    parts = sub.strip("/").split("/")
+                    # /series/<s>/point_<k>/snapshots/<j>
+                    if len(parts) == 5 and parts[0] == "series" and parts[3] == "snapshots":
+                        series, run, j = parts[1], int(parts[2][len("point_"):]), int(parts[4])
+                        count = len(gin)
+                        if not any(s == series and r == run and (q == j or q + count == j) for s, r, q in keep):
+                            continue
+                    walk(obj, gout.create_group(name), sub)
+                else:
+                    data = obj[()]
+                    snap = "/snapshots/" in sub and getattr(data, "dtype", None) is not None
+                    if snap and data.dtype == np.float64 and not sub.endswith(("/x", "/y", "/xy")):
+                        data = data.astype(np.float32)
+                    d = gout.create_dataset(name, data=data, compression="gzip" if snap else None)
+                    copy_attrs(obj, d)
+
+        walk(fin, fout, "")
+    os.replace(tmp, dst)
+    return os.path.getsize(dst)
 
 
 def main():
@@ -68,8 +125,13 @@ def main():
         rec["recorded"] = {"how": a.how.strip(), "recorded_at": now}
         os.makedirs(os.path.join(a.into, paper), exist_ok=True)
         write_atomic(os.path.join(a.into, paper, item + ".json"), rec)
-        print("recorded %s (%s, %d checks, run %s)" % (rec["case"], rec.get("status"), len(rec.get("checks", [])),
-                                                       rec.get("date")))
+        size = ""
+        h5 = os.path.join(a.results, paper, item + ".h5")
+        if os.path.exists(h5):
+            n = slim_copy(h5, os.path.join(a.into, paper, item + ".h5"), plotted_snapshots(rec["case"]))
+            size = ", plot data %.0f kB" % (n / 1024.0)
+        print("recorded %s (%s, %d checks, run %s%s)" % (rec["case"], rec.get("status"), len(rec.get("checks", [])),
+                                                         rec.get("date"), size))
 
 
 if __name__ == "__main__":

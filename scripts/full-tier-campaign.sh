@@ -19,10 +19,10 @@ compute() {  # a failed run is reported and the campaign goes on
 case "$method" in
   sph)
     # Cases that can be recorded soonest first. Figs 5 and 7 need the two mu = 0.35 runs that Fig 6
-    # shares (about 77 min on two threads, 2.5 h on one, each); then the cheap runs: Fig 8 (three
-    # 2121-particle runs, about 20 CPU-min each) and the coarse series of Figs 9 and 10 (about
-    # 15 CPU-min each); then the long ones: Fig 6 at mu = 0.5 and 0.65 and the fine series of
-    # Figs 9 and 10 (2-2.5 h each on one thread).
+    # shares (55-60 min each on two threads; 2.5 h on one with the code before the SIMD pair
+    # passes); then the cheap runs: Fig 8 (three 2121-particle runs, about 20 CPU-min each) and
+    # the coarse series of Figs 9 and 10 (about 15 CPU-min each); then the long ones: Fig 6 at
+    # mu = 0.5 and 0.65 and the fine series of Figs 9 and 10 (2-2.5 h each on one thread).
     compute --case afrasiabi2021/fig03 --case afrasiabi2021/table1
     compute --case afrasiabi2021/fig05
     compute --case afrasiabi2021/fig08
@@ -36,7 +36,7 @@ case "$method" in
     # Kahwash: the node study and every LaRC02 / Hashin run first (0.5-2 CPU-min each at 12,015
     # nodes); then the maximum-stress snapshot run at 30 deg that completes Figs 6-7 (13 CPU-min) and
     # the LaRC02 snapshot run at 75 deg of Figs 8-9 (13 CPU-min); then maximum stress at 15-75 deg
-    # (8-37 CPU-min each: they separate late, after 50-115 um of travel; session 11) and the
+    # (8-37 min each on one thread: they separate late, after 50-115 um of travel) and the
     # maximum-stress snapshot run of Figs 8-9.
     compute --case kahwash2018/table2 --case kahwash2018/table6
     compute --case kahwash2018/table4 --series efg_hashin --series time_scaling

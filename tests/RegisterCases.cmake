@@ -20,8 +20,15 @@ foreach(case_file ${CUTBENCH_CASE_FILES})
                COMMAND cutbench run ${paper}/${item} --tier ${tier} --out ${CMAKE_BINARY_DIR}/results-${tier} --ctest)
       set_tests_properties(${test_name} PROPERTIES
         LABELS "${tier};paper:${paper};solver:${solver}"
+        FIXTURES_SETUP "results_${tier}"
         SKIP_RETURN_CODE 77
         ENVIRONMENT "OMP_NUM_THREADS=${CUTBENCH_TEST_THREADS};OMP_WAIT_POLICY=PASSIVE;LC_ALL=C;CUTBENCH_ROOT=${PROJECT_SOURCE_DIR}")
     endif()
   endforeach()
 endforeach()
+
+# Every counted check can fail: the audit over the case files, the quick-tier records just written
+# (each carries its perturbation audit) and the paper-resolution records.
+add_test(NAME check_audit COMMAND cutbench audit --results ${CMAKE_BINARY_DIR}/results-quick)
+set_tests_properties(check_audit PROPERTIES LABELS "quick" FIXTURES_REQUIRED results_quick
+  ENVIRONMENT "LC_ALL=C;CUTBENCH_ROOT=${PROJECT_SOURCE_DIR}")

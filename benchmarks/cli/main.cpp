@@ -1,12 +1,16 @@
 // cutbench — the command line: list, run, eval, bench, report, runs.
-// Exit codes: 0 all pass, 1 a check failed (or an internal error), 2 bad input (nothing written).
+// Exit codes: 0 all pass, 1 a check failed (or an internal error), 2 bad input (nothing written),
+// 3 a run faulted (ERROR: a series threw, a non-finite solver output, a blow-up guard).
 #include <CLI/CLI.hpp>
+
+#include <cerrno>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <set>
@@ -19,9 +23,14 @@
 #include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/framework/run_cache.hpp"
+#include "cutbench/framework/audit.hpp"
 #include "cutbench/framework/case.hpp"
 #include "cutbench/framework/runner.hpp"
 #include "cutbench/framework/store.hpp"
+
+// after the project headers: <signal.h> (through <sys/wait.h>) defines a macro `si_value`
+#include <spawn.h>
+#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 using namespace cutbench;
@@ -31,6 +40,7 @@ namespace {
 
 constexpr int kExitFail = 1;
 constexpr int kExitBadInput = 2;
+constexpr int kExitError = 3;  // a run faulted: a series threw, a non-finite output, a blow-up guard
 constexpr int kExitSkip = 77;  // ctest SKIP_RETURN_CODE for NOT IMPLEMENTED cases
 
 // Parse key=value pairs for a model/solver against its parameter specs.
@@ -50,13 +60,15 @@ Values parse_assignments(const std::vector<std::string>& args, const std::vector
       for (const auto& s : specs) known += (known.empty() ? "" : ", ") + s.name;
       throw InputError(key, "unknown parameter of '" + owner + "' (known: " + known + ")");
     }
+    if (v.count(key)) throw InputError(key, "given twice");
     v[key] = parse_quantity(a.substr(eq + 1), p->dim, key);
   }
   return v;
 }
 
 std::string fmt(double v, int prec = 6) {
-  if (!std::isfinite(v)) return "nan";
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   std::ostringstream os;
   os << std::setprecision(prec) << v;
   return os.str();
@@ -80,6 +92,15 @@ private:
   std::chrono::steady_clock::time_point t0_, last_{};
 };
 
+// A verdict as one word for the table: "FAIL (known)" when every failing check is documented for
+// that tier, "+ stale" when a record was made by other solver sources than this build's.
+std::string verdict_word(const json& v) {
+  std::string s = v.value("status", std::string("NOT RUN"));
+  if (s == "FAIL" && v.value("unexpected_failures", 1) == 0) s = "FAIL (known)";
+  if (v.value("stale", false)) s += " stale";
+  return s;
+}
+
 int cmd_list(bool as_json, const fs::path& results, const std::string& paper_filter) {
   const fs::path root = source_root();
   json all = json::array();
@@ -87,33 +108,29 @@ int cmd_list(bool as_json, const fs::path& results, const std::string& paper_fil
   for (const auto& file : discover_case_files(root)) {
     CaseSpec c = load_case(file, "quick");
     if (!paper_filter.empty() && c.paper != paper_filter) continue;
-    std::string status = c.implemented() ? "NOT RUN" : "NOT IMPLEMENTED";
-    json last = read_case_json(results, c);
-    if (c.implemented() && last.is_object() && last.contains("status")) {
-      status = last["status"].get<std::string>();
-      if (status == "FAIL" && last.value("unexpected_failures", 1) == 0) status = "FAIL (known)";
-    }
-    counts[c.paper][status]++;
-    json j = {{"case", c.id}, {"paper", c.paper}, {"item", c.item}, {"title", c.title},
-              {"solver", c.solver}, {"models", c.models}, {"tiers", c.tiers}, {"status", status}};
+    const json v = case_verdicts(results, c);
+    const std::string paper_word = verdict_word(v["paper_resolution"]);
+    counts[c.paper][paper_word]++;
+    json j = {{"case", c.id},          {"paper", c.paper},   {"item", c.item},
+              {"title", c.title},      {"solver", c.solver}, {"models", c.models},
+              {"tiers", c.tiers},      {"status", paper_word}, {"paper_resolution", v["paper_resolution"]},
+              {"regression", v["regression"]}};
+    if (!c.claim.empty()) j["claim"] = c.claim;
     if (!c.implemented()) j["reason"] = c.reason;
-    if (last.is_object() && last.contains("date")) j["last_run"] = last["date"];
     all.push_back(j);
   }
   if (as_json) {
     std::cout << all.dump(2) << "\n";
     return 0;
   }
-  std::cout << std::left << std::setw(28) << "CASE" << std::setw(14) << "ITEM" << std::setw(10) << "SOLVER"
-            << std::setw(12) << "TIERS" << "STATUS\n";
+  std::cout << std::left << std::setw(28) << "CASE" << std::setw(10) << "SOLVER" << std::setw(26)
+            << "PAPER RESOLUTION" << "REGRESSION (quick tier, reduced resolution)\n";
   for (const auto& j : all) {
-    std::string tiers;
-    for (const auto& t : j["tiers"]) tiers += (tiers.empty() ? "" : ",") + t.get<std::string>();
-    std::cout << std::left << std::setw(28) << j["case"].get<std::string>() << std::setw(14)
-              << j["item"].get<std::string>() << std::setw(10) << j["solver"].get<std::string>() << std::setw(12)
-              << tiers << j["status"].get<std::string>() << "\n";
+    std::cout << std::left << std::setw(28) << j["case"].get<std::string>() << std::setw(10)
+              << j["solver"].get<std::string>() << std::setw(26) << j["status"].get<std::string>()
+              << verdict_word(j["regression"]) << "\n";
   }
-  std::cout << "\n";
+  std::cout << "\nPaper-resolution verdicts (full-tier records; analytic cases: their evaluation):\n";
   for (const auto& [paper, m] : counts) {
     int n = 0;
     for (const auto& [s, k] : m) n += k;
@@ -121,8 +138,9 @@ int cmd_list(bool as_json, const fs::path& results, const std::string& paper_fil
     for (const auto& [s, k] : m) std::cout << ", " << k << " " << s;
     std::cout << "\n";
   }
-  std::cout << "FAIL (known): every failing check is a documented known failure (a paper inconsistency or an\n"
-               "open solver limitation, with its reason in the report); it stays FAIL and does not fail the exit code.\n";
+  std::cout << "FAIL (known): every failing check is a documented known failure of that tier (reason and finding\n"
+               "in the report); it stays FAIL. stale: the record was made by other solver sources than this build's.\n"
+               "NOT YET RUN: no paper-resolution record; the regression column is the reduced-resolution quick tier.\n";
   return 0;
 }
 
@@ -148,6 +166,7 @@ int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const
   const std::string tier = tier_opt.empty() ? "quick" : tier_opt;
   const std::vector<fs::path> files = select_case_files(ids, paper, !tier_opt.empty() && ids.empty());
   if (files.empty()) throw InputError("run", "no cases selected (give case ids, --paper or --tier)");
+  require_output_dir(out, "--out");
   // Validate everything first: a bad case writes nothing.
   std::vector<CaseSpec> cases;
   for (const auto& f : files) {
@@ -155,7 +174,12 @@ int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const
     if (!tier_opt.empty() && ids.empty() && !c.in_tier(tier)) continue;
     cases.push_back(std::move(c));
   }
-  int unexpected = 0, n_pass = 0, n_fail = 0, n_notrun = 0, n_ni = 0;
+  for (const fs::path& d : {out, fs::path(run_cache_dir())}) {
+    if (const std::size_t n = remove_stale_temporaries(d)) {
+      std::cerr << "removed " << n << " temporary file(s) of killed runs from " << d.string() << "\n";
+    }
+  }
+  int unexpected = 0, n_pass = 0, n_fail = 0, n_notrun = 0, n_ni = 0, n_error = 0, n_inconclusive = 0;
   bool all_ni = true;
   for (const auto& c : cases) {
     std::cerr << "run " << c.id << " (" << tier << ")\n";
@@ -175,20 +199,134 @@ int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const
                   << (ch.is_range ? "[" + fmt(ch.lower) + ", " + fmt(ch.upper) + "]" : fmt(ch.reference)) << " "
                   << ch.units << " (error " << fmt(ch.error) << ", tolerance " << fmt(ch.tolerance)
                   << (ch.relative_tol ? " rel" : "") << ")" << (known ? " — " + ch.known_failure : "") << "\n";
-      } else if (ch.status == "NOT RUN") {
-        std::cout << "  NOT RUN " << c.id << " " << ch.key << ": " << ch.message << "\n";
+      } else if (ch.status == "NOT RUN" || ch.status == "ERROR" || ch.status == "INCONCLUSIVE") {
+        std::cout << "  " << ch.status << " " << c.id << " " << ch.key << ": " << ch.message << "\n";
       }
     }
+    for (const auto& sr : r.series) {
+      if (!sr.error.empty()) std::cout << "  ERROR " << c.id << " series '" << sr.name << "': " << sr.error << "\n";
+    }
     const std::string& s = r.status;
-    (s == "PASS" ? n_pass : s == "FAIL" ? n_fail : s == "NOT RUN" ? n_notrun : n_ni)++;
+    (s == "PASS"           ? n_pass
+     : s == "FAIL"         ? n_fail
+     : s == "ERROR"        ? n_error
+     : s == "INCONCLUSIVE" ? n_inconclusive
+     : s == "NOT RUN"      ? n_notrun
+                           : n_ni)++;
     std::cout << std::left << std::setw(16) << s << c.id << "  (" << r.checks.size() << " checks, "
               << fmt(r.wall_time_s, 3) << " s)\n";
   }
   merge_checks_json(out);
-  std::cout << "\n" << cases.size() << " cases: " << n_pass << " PASS, " << n_fail << " FAIL, " << n_notrun
-            << " NOT RUN, " << n_ni << " NOT IMPLEMENTED; results in " << out.string() << "\n";
+  std::cout << "\n" << cases.size() << " cases (" << tier << " tier): " << n_pass << " PASS, " << n_fail << " FAIL, "
+            << n_error << " ERROR, " << n_inconclusive << " INCONCLUSIVE, " << n_notrun << " NOT RUN, " << n_ni
+            << " NOT IMPLEMENTED; results in " << out.string() << "\n";
+  if (n_error > 0) return kExitError;
   if (unexpected > 0) return kExitFail;
   if (ctest_mode && all_ni) return kExitSkip;
+  return 0;
+}
+
+// `cutbench audit`: every counted check must be able to fail. Static rules over every case file (both
+// tiers) and the perturbation audit that each `cutbench run` stores in its records (`audit`), read
+// from DIR and from the paper-resolution records. Exit 1 when a reproduction or validation check
+// is vacuous; consistency and verification checks found so are listed apart.
+int cmd_audit(const std::vector<std::string>& ids, const std::string& paper, const fs::path& results, bool as_json) {
+  const std::vector<fs::path> files = select_case_files(ids, paper, ids.empty());
+  json found = json::array();
+  std::size_t counted = 0, perturbed = 0;
+  std::set<std::string> seen;  // case|key already flagged
+  auto flag = [&](const std::string& id, const std::string& key, const std::string& kind, const std::string& why,
+                  const std::string& where) {
+    if (!seen.insert(id + "|" + key).second) return;
+    found.push_back({{"case", id}, {"key", key}, {"kind", kind}, {"why", why}, {"from", where},
+                     {"vacuous", kind == "reproduction" || kind == "validation"}});
+  };
+  for (const auto& f : files) {
+    std::map<std::string, std::string> kinds;
+    for (const std::string tier : {"quick", "full"}) {
+      const CaseSpec c = load_case(f, tier);
+      for (const auto& cs : c.checks) {
+        kinds[cs.key] = cs.kind;
+        if (tier == "quick" && (cs.kind == "reproduction" || cs.kind == "validation")) ++counted;
+        if (const std::string why = audit_static(c, cs); !why.empty()) flag(c.id, cs.key, cs.kind, why, "case file");
+      }
+      const fs::path rec_path = tier == "full" ? source_root() / "reports" / "full_tier" / c.paper / (c.item_id + ".json")
+                                               : results / c.paper / (c.item_id + ".json");
+      std::ifstream in(rec_path);
+      if (!in) continue;
+      json rec;
+      try {
+        rec = json::parse(in);
+      } catch (const json::exception&) {
+        continue;
+      }
+      const bool audited = rec.value("audited", false);
+      for (const auto& ch : rec.value("checks", json::array())) {
+        const std::string key = ch.value("key", std::string());
+        if (!kinds.count(key)) continue;  // a check the case file no longer has
+        const std::string st = ch.value("status", std::string());
+        if (audited && (st == "PASS" || st == "FAIL")) ++perturbed;
+        const std::string why = ch.value("audit", std::string());
+        if (!why.empty()) flag(c.id, key, kinds[key], why, rec_path.lexically_relative(source_root()).string());
+      }
+    }
+  }
+  std::size_t vacuous = 0;
+  for (const auto& j : found) vacuous += j["vacuous"].get<bool>() ? 1 : 0;
+  if (as_json) {
+    std::cout << json({{"counted_checks", counted}, {"perturbed_records", perturbed}, {"vacuous", vacuous},
+                       {"flagged", found}})
+                     .dump(2)
+              << "\n";
+  } else {
+    for (const auto& j : found) {
+      std::cout << (j["vacuous"].get<bool>() ? "VACUOUS " : "apart   ") << j["case"].get<std::string>() << " "
+                << j["key"].get<std::string>() << " (" << j["kind"].get<std::string>()
+                << "): " << j["why"].get<std::string>() << " [" << j["from"].get<std::string>() << "]\n";
+    }
+    std::cout << files.size() << " cases, " << counted << " reproduction/validation checks (quick tier); "
+              << perturbed << " check records perturbation-audited; " << vacuous
+              << " vacuous reproduction/validation checks"
+              << (found.size() > vacuous ? ", " + std::to_string(found.size() - vacuous) +
+                                               " verification/consistency checks listed apart"
+                                         : std::string())
+              << "\n";
+  }
+  return vacuous > 0 ? kExitFail : 0;
+}
+
+// `cutbench records [--paper P] [--refresh]`: the paper-resolution records and their verdicts;
+// --refresh re-judges them against the case files as they are now (refresh_record) and rewrites them.
+int cmd_records(const std::string& paper, bool refresh) {
+  const fs::path dir = source_root() / "reports" / "full_tier";
+  int n = 0;
+  for (const auto& file : discover_case_files(source_root())) {
+    const std::string p = file.parent_path().filename().string();
+    if (!paper.empty() && p != paper) continue;
+    const fs::path rec_path = dir / p / (file.stem().string() + ".json");
+    if (!fs::exists(rec_path)) continue;
+    std::ifstream in(rec_path);
+    json rec;
+    try {
+      rec = json::parse(in);
+    } catch (const json::exception& e) {
+      throw InputError(rec_path.string(), std::string("not a JSON record: ") + e.what());
+    }
+    const CaseSpec spec = load_case(file, "full");
+    ++n;
+    if (!refresh) {
+      std::cout << std::left << std::setw(28) << spec.id << verdict_word(case_verdicts("", spec)["paper_resolution"])
+                << "\n";
+      continue;
+    }
+    std::vector<std::string> changes;
+    const json out = refresh_record(rec, spec, &changes);
+    write_atomic(rec_path, out.dump(1) + "\n");
+    std::cout << spec.id << ": " << out["status"].get<std::string>()
+              << (changes.empty() ? std::string(", unchanged") : std::string()) << "\n";
+    for (const auto& c : changes) std::cout << "  " << c << "\n";
+  }
+  std::cout << n << " paper-resolution records" << (refresh ? " refreshed" : "") << "\n";
   return 0;
 }
 
@@ -238,6 +376,20 @@ int cmd_eval_list(bool as_json) {
   return 0;
 }
 
+// An applicable model whose output is not finite has overflowed for these inputs: an ERROR (exit 3).
+int overflowed(const ModelSpec& m, const ModelResult& r) {
+  if (!r.applicable) return 0;
+  for (const auto& o : m.outputs) {
+    const auto it = r.outputs.find(o.name);
+    if (it != r.outputs.end() && !std::isfinite(it->second)) {
+      std::cerr << "cutbench: ERROR: output '" << o.name << "' of " << m.name
+                << " is not finite for these inputs (overflow)\n";
+      return kExitError;
+    }
+  }
+  return 0;
+}
+
 int cmd_eval(const std::string& model, const std::vector<std::string>& args, bool as_json) {
   const ModelSpec& m = ModelRegistry::instance().get(model);
   const Values given = parse_assignments(args, m.params, model);
@@ -253,6 +405,7 @@ int cmd_eval(const std::string& model, const std::vector<std::string>& args, boo
     }
     if (!r.note.empty()) j["note"] = r.note;
     std::cout << j.dump(2) << "\n";
+    return overflowed(m, r);
   } else {
     if (!r.applicable) std::cout << "not applicable: " << r.note << "\n";
     for (const auto& o : m.outputs) {
@@ -260,7 +413,7 @@ int cmd_eval(const std::string& model, const std::vector<std::string>& args, boo
       std::cout << std::left << std::setw(18) << o.name << std::setw(16) << fmt(v, 10) << si_unit(o.dim) << "\n";
     }
   }
-  return 0;
+  return overflowed(m, r);
 }
 
 // Steps a resumed run did before this process: the solvers' note "resumed from a checkpoint at
@@ -517,15 +670,33 @@ int cmd_runs(const std::string& dir, bool check, bool as_json, bool scalars) {
   return 0;
 }
 
+// Runs a program with an argument vector (no shell: paths are never interpreted) and waits for it.
+int run_program(const std::vector<std::string>& argv) {
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 int cmd_report(const fs::path& results, const fs::path& out) {
+  if (!fs::is_directory(results)) throw InputError("--results", "'" + results.string() + "' is not a directory");
+  require_output_dir(results, "--results");
+  require_output_dir(out, "--out");
   write_manifest(results);
-  const std::string cmd = std::string(CUTBENCH_PYTHON) + " \"" +
-                          (source_root() / "reports" / "make_report.py").string() + "\" --root \"" +
-                          source_root().string() + "\" --results \"" + results.string() + "\" --out \"" +
-                          out.string() + "\"";
-  const int rc = std::system(cmd.c_str());
+  const std::vector<std::string> argv = {CUTBENCH_PYTHON, (source_root() / "reports" / "make_report.py").string(),
+                                         "--root", source_root().string(), "--results", results.string(),
+                                         "--out", out.string()};
+  const int rc = run_program(argv);
   if (rc != 0) {
-    std::cerr << "cutbench report: the report generator failed (" << cmd << ")\n";
+    std::cerr << "cutbench report: the report generator failed (exit " << rc << ":";
+    for (const auto& a : argv) std::cerr << " '" << a << "'";
+    std::cerr << ")\n";
     return kExitFail;
   }
   std::cout << "report: " << (out / "index.html").string() << "\n";
@@ -548,7 +719,7 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> run_ids;
   std::string run_paper, run_tier, run_out = "results";
-  int threads = 0;
+  int threads = 0;  // 0: not given (OpenMP's default)
   bool ctest_mode = false, strict = false;
   auto* run = app.add_subcommand("run", "Run cases: write HDF5 results and checks.json");
   run->add_option("cases", run_ids, "Case ids (nairn2015/fig08) or paths to case files");
@@ -613,6 +784,22 @@ int main(int argc, char** argv) {
   runs->add_option("-j,--threads", threads, "OpenMP threads (with --compute)");
   runs->add_option("--checkpoint-minutes", checkpoint_minutes, "With --compute: minutes between two checkpoints (default 10)");
 
+  std::vector<std::string> audit_ids;
+  std::string audit_paper, audit_results = "results";
+  bool audit_json = false;
+  auto* audit = app.add_subcommand("audit", "Can every counted check fail? Static rules and the stored perturbation audit");
+  audit->add_option("cases", audit_ids, "Case ids (default: every case)");
+  audit->add_option("--paper", audit_paper, "Every case of one paper");
+  audit->add_option("--results", audit_results, "Results directory of a `cutbench run` (its records carry the audit)");
+  audit->add_flag("--json", audit_json, "JSON output");
+
+  std::string records_paper;
+  bool records_refresh = false;
+  auto* records = app.add_subcommand("records", "The paper-resolution records (reports/full_tier/<paper>/<item>.json)");
+  records->add_option("--paper", records_paper, "Only this paper");
+  records->add_flag("--refresh", records_refresh,
+                    "Re-judge each record against its case file as it is now (values as recorded) and rewrite it");
+
   std::string report_results = "results", report_out = "report";
   auto* report = app.add_subcommand("report", "Static HTML report from the results directory");
   report->add_option("--results", report_results, "Results directory");
@@ -624,10 +811,11 @@ int main(int argc, char** argv) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : kExitBadInput;
   }
-#ifdef _OPENMP
-  if (threads > 0) omp_set_num_threads(threads);
-#endif
   try {
+    if (threads < 0 || threads > 1024) throw InputError("-j", "a number of threads in 1..1024 (got " + std::to_string(threads) + ")");
+#ifdef _OPENMP
+    if (threads > 0) omp_set_num_threads(threads);
+#endif
     register_all();
     if (*list) return cmd_list(list_json, results_dir, list_paper);
     if (*run) {
@@ -642,6 +830,8 @@ int main(int argc, char** argv) {
     }
     if (*bench) return cmd_bench(bench_name, bench_args, bench_repeat, bench_out, bench_state);
     if (*report) return cmd_report(report_results, report_out);
+    if (*records) return cmd_records(records_paper, records_refresh);
+    if (*audit) return cmd_audit(audit_ids, audit_paper, audit_results, audit_json);
     if (*runs) {
       if (runs_cases.empty() && runs_paper.empty()) {
         if (runs_compute || !runs_series.empty()) throw InputError("--compute", "give the cases: --case C or --paper P");

@@ -34,6 +34,16 @@ expect "negative modulus"     "E_prime"          run "$bad/nairn2015/negative_mo
 expect "rake >= 90 deg"       "rake"             run "$bad/nairn2015/rake_90.toml"
 expect "negative friction"    "mu"               run "$bad/nairn2015/negative_mu.toml"
 expect "missing reference"    "reference.file"   run "$bad/nairn2015/missing_reference.toml"
+expect "known_failure as a plain string" "known_failure" run "$bad/nairn2015/known_failure_plain.toml"
+expect "known_failure without finding"  "finding"       run "$bad/nairn2015/known_failure_no_finding.toml"
+expect "finding not in FINDINGS.md"     "finding"       run "$bad/nairn2015/finding_unknown.toml"
+expect "known_failure text too long"    "known_failure.quick" run "$bad/nairn2015/known_failure_long.toml"
+expect "no tolerance_source"            "tolerance_source" run "$bad/nairn2015/no_tolerance_source.toml"
+expect "unknown check kind"             "kind"          run "$bad/nairn2015/unknown_kind.toml"
+expect "scatter without its source"     "scatter_source" run "$bad/nairn2015/scatter_without_source.toml"
+if "$cutbench" runs --case nairn2015/fig04 --tier quick >/dev/null 2>&1; then
+  expect "MPM cfl beyond stability"     "cfl"           run "$bad/nairn2015/mpm_cfl_unstable.toml"
+fi
 expect "unknown case"         "case"             run nairn2015/fig99
 expect "unknown paper"        "--paper"          run --paper nobody2020
 expect_eval "eval unknown param"  "colour"  atkins_touching colour=3
@@ -49,5 +59,17 @@ if [[ "$("$cutbench" bench efg_cutting completion_guard=1.4 2>&1 >/dev/null)" ==
   echo "skip option not a whole number: the EFG solver is not in this build (CUTBENCH_SOLVERS=OFF)"
 else
   expect_cmd "option not a whole number" "completion_guard" bench efg_cutting completion_guard=1.4
+fi
+# A run that faults is an ERROR: exit 3, the series and the reason named (results are written).
+if "$cutbench" runs --case nairn2015/fig04 --tier quick >/dev/null 2>&1; then
+  out=$(mktemp -d)
+  msg=$("$cutbench" run "$root/tests/data/fault_cases/nairn2015/total_time_overflow.toml" --out "$out" 2>&1); rc=$?
+  if [[ $rc -ne 3 ]]; then echo "FAIL fault: exit $rc (expected 3): $msg"; fail=1;
+  elif [[ "$msg" != *"ERROR"*"total_time"* ]]; then echo "FAIL fault: no ERROR naming total_time: $msg"; fail=1;
+  elif ! grep -q '"status": "ERROR"' "$out/nairn2015/total_time_overflow.json"; then echo "FAIL fault: record is not ERROR"; fail=1;
+  else echo "ok   fault is ERROR, exit 3"; fi
+  rm -rf "$out"
+else
+  echo "skip fault: the MPM solver is not in this build (CUTBENCH_SOLVERS=OFF)"
 fi
 exit $fail

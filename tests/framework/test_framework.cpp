@@ -160,7 +160,9 @@ reference = 5
 tolerance = 0.1
 units = "mm"
 source = "deliberately wrong"
-known_failure = "documented paper inconsistency"
+tolerance_source = "test"
+known_failure = { quick = "documented paper inconsistency" }
+finding = "F01"
 
 [[checks]]
 key = "slope"
@@ -261,6 +263,8 @@ reference = 5
 tolerance = 0.1
 units = "mm"
 source = "deliberately wrong"
+tolerance_source = "test"
+finding = "F01"
 )";
   const fs::path f = write_case("toy_kf_tier", check + "known_failure = { full = \"full-tier reason\" }\n", "[\"quick\", \"full\"]");
   const CaseResult quick = run_case(load_case(f, "quick"), "quick", nullptr);
@@ -295,8 +299,31 @@ BOOST_AUTO_TEST_CASE(bad_case_files_name_the_field) {
   expect_field("bad_model", "status = \"implemented\"\n[[series]]\nname = \"s\"\nmodel = \"nope\"\n", "model");
   expect_field("bad_status", "status = \"maybe\"\n", "status");
   expect_field("bad_ref", "status = \"implemented\"\n[[checks]]\nkey = \"k\"\nkind = \"verification\"\nmetric = \"relative\"\n"
-               "value = 1\nreference = { file = \"missing.csv\", column = \"x\" }\ntolerance = 0.1\nunits = \"1\"\nsource = \"s\"\n",
+               "value = { series = \"s\", output = \"y\" }\nreference = { file = \"missing.csv\", column = \"x\" }\ntolerance = 0.1\n"
+               "units = \"1\"\nsource = \"s\"\n",
                "reference.file");
+  const std::string check = "status = \"implemented\"\n[[checks]]\nkey = \"k\"\nkind = \"reproduction\"\nmetric = \"relative\"\n"
+                            "value = { series = \"s\", output = \"y\" }\nreference = 1\nunits = \"1\"\nsource = \"s\"\n";
+  expect_field("literal_value", "status = \"implemented\"\n[[checks]]\nkey = \"k\"\nkind = \"consistency\"\n"
+               "metric = \"relative\"\nvalue = 1\nreference = 1\ntolerance = 0.1\nunits = \"1\"\nsource = \"s\"\n",
+               "value");
+  expect_field("tolerance_text", check + "tolerance_source = \"t\"\ntolerance = \"abc\"\n", "tolerance");
+  expect_field("tolerance_huge", check + "tolerance_source = \"t\"\ntolerance = 1e300\n", "tolerance");
+  expect_field("tolerance_inf", check + "tolerance_source = \"t\"\ntolerance = inf\n", "tolerance");
+  expect_field("no_tolerance_source", check + "tolerance = 0.1\n", "tolerance_source");
+  expect_field("known_failure_plain", check + "tolerance_source = \"t\"\ntolerance = 0.1\nknown_failure = \"x\"\nfinding = \"F01\"\n",
+               "known_failure");
+  expect_field("finding_missing", check + "tolerance_source = \"t\"\ntolerance = 0.1\nknown_failure = { quick = \"x\" }\n",
+               "finding");
+  expect_field("sweep_n_text", "status = \"implemented\"\n[[series]]\nname = \"s\"\nmodel = \"toy_linear\"\n"
+               "sweep = { param = \"x\", from = \"0 mm\", to = \"1 mm\", n = \"300\" }\n", "sweep.n");
+  expect_field("sweep_n_fraction", "status = \"implemented\"\n[[series]]\nname = \"s\"\nmodel = \"toy_linear\"\n"
+               "sweep = { param = \"x\", from = \"0 mm\", to = \"1 mm\", n = 2.5 }\n", "sweep.n");
+  expect_field("series_name_slash", "status = \"implemented\"\n[[series]]\nname = \"a/b\"\nmodel = \"toy_linear\"\n"
+               "params = { x = \"1 mm\" }\n", "name");
+  expect_field("series_name_twice", "status = \"implemented\"\n[[series]]\nname = \"s\"\nmodel = \"toy_linear\"\n"
+               "params = { x = \"1 mm\" }\n[[series]]\nname = \"s\"\nmodel = \"toy_linear\"\nparams = { x = \"2 mm\" }\n",
+               "name");
 }
 
 BOOST_AUTO_TEST_CASE(hdf5_result_has_provenance_and_units) {
@@ -745,4 +772,187 @@ BOOST_AUTO_TEST_CASE(recorded_full_tier_runs_match_their_case_files) {
     }
   }
   BOOST_TEST_MESSAGE(records << " recorded full-tier case runs checked");
+}
+
+// A series that throws makes its checks ERROR and the case ERROR, never NOT RUN or PASS.
+BOOST_AUTO_TEST_CASE(a_series_that_throws_is_an_error) {
+  add_toy();
+  if (!ModelRegistry::instance().find("toy_throws")) {
+    ModelSpec m;
+    m.name = "toy_throws";
+    m.description = "throws";
+    m.source = "test";
+    m.params = {param("x", Dim::length, "abscissa")};
+    m.outputs = {{"y", Dim::length, "never"}};
+    m.evaluate = [](const Values&) -> ModelResult { throw std::runtime_error("out of memory (simulated)"); };
+    ModelRegistry::instance().add(m);
+  }
+  const fs::path f = write_case("toy_error", R"(status = "implemented"
+[[series]]
+name = "bad"
+model = "toy_throws"
+params = { x = "1 mm" }
+[[series]]
+name = "good"
+model = "toy_linear"
+params = { x = "1 mm" }
+[[checks]]
+key = "reads_bad"
+kind = "verification"
+metric = "absolute"
+value = { series = "bad", output = "y" }
+reference = 2
+tolerance = 0.1
+units = "mm"
+source = "test"
+[[checks]]
+key = "reads_good"
+kind = "verification"
+metric = "absolute"
+value = { series = "good", output = "y" }
+reference = 2
+tolerance = 0.1
+units = "mm"
+source = "test"
+)");
+  const CaseResult r = run_case(load_case(f, "quick"), "quick", nullptr);
+  BOOST_TEST(r.checks[0].status == "ERROR");
+  BOOST_TEST(r.checks[0].message.find("out of memory") != std::string::npos);
+  BOOST_TEST(r.checks[1].status == "PASS");
+  BOOST_TEST(r.status == "ERROR");
+}
+
+// A value within the measured scatter of a boundary is INCONCLUSIVE; outside it the verdict stands.
+// A bare scatter number is in the check's units.
+BOOST_AUTO_TEST_CASE(scatter_makes_a_close_call_inconclusive) {
+  add_toy();
+  auto run_with = [](const std::string& name, const std::string& reference, const std::string& scatter) {
+    const fs::path f = write_case(name, R"(status = "implemented"
+[[series]]
+name = "line"
+model = "toy_linear"
+params = { x = "1 mm" }
+[[checks]]
+key = "k"
+kind = "reproduction"
+metric = "absolute"
+value = { series = "line", output = "y" }
+reference = )" + reference + R"(
+tolerance = 0.5
+units = "mm"
+source = "test"
+tolerance_source = "test"
+scatter = )" + scatter + R"(
+scatter_source = "test"
+)");
+    return run_case(load_case(f, "quick"), "quick", nullptr).checks[0];
+  };
+  // y = 2 mm; boundary at 2.4 mm (reference 2.9): 0.4 mm from it
+  BOOST_TEST(run_with("toy_sc1", "2.9", "0.5").status == "INCONCLUSIVE");
+  BOOST_TEST(run_with("toy_sc2", "2.9", "0.3").status == "FAIL");
+  BOOST_TEST(run_with("toy_sc3", "2.0", "0.3").status == "PASS");
+  BOOST_TEST(run_with("toy_sc4", "2.0", "\"0.6 mm\"").status == "INCONCLUSIVE");
+  BOOST_TEST(run_with("toy_sc5", "2.0", "{ full = 0.6 }").status == "PASS");  // no quick-tier scatter
+}
+
+// The audit: a comparison of a series with itself cannot fail; a comparison with a number can.
+BOOST_AUTO_TEST_CASE(audit_finds_checks_that_cannot_fail) {
+  add_toy();
+  const fs::path f = write_case("toy_audit", R"(status = "implemented"
+[[series]]
+name = "line"
+model = "toy_linear"
+sweep = { param = "x", from = "0 mm", to = "10 mm", n = 11 }
+[[checks]]
+key = "self_ratio"
+kind = "reproduction"
+metric = "relative"
+value = { ratio = [ { series = "line", output = "y", row = 3 }, { series = "line", output = "y", row = 3 } ] }
+reference = 1
+tolerance = 0.01
+units = "1"
+source = "test"
+tolerance_source = "test"
+[[checks]]
+key = "self_reference"
+kind = "reproduction"
+metric = "relative"
+value = { series = "line", output = "y", row = 3 }
+reference = { series = "line", output = "y", at = { x = "3 mm" } }
+tolerance = 0.01
+units = "mm"
+source = "test"
+tolerance_source = "test"
+[[checks]]
+key = "argmax_in_sweep"
+kind = "reproduction"
+metric = "within"
+value = { series = "line", output = "y", x = "x", feature = "argmax" }
+reference = ["0 mm", "10 mm"]
+units = "mm"
+source = "test"
+tolerance_source = "test"
+[[checks]]
+key = "echo"
+kind = "reproduction"
+metric = "absolute"
+value = { series = "line", output = "x", row = 2 }
+reference = 2
+tolerance = 0.1
+units = "mm"
+source = "test"
+tolerance_source = "test"
+[[checks]]
+key = "honest"
+kind = "reproduction"
+metric = "relative"
+value = { series = "line", output = "y", at = { x = "2 mm" } }
+reference = "4 mm"
+tolerance = 0.01
+units = "mm"
+source = "test"
+tolerance_source = "test"
+)");
+  const CaseResult r = run_case(load_case(f, "quick"), "quick", nullptr);
+  std::map<std::string, std::string> audit;
+  for (const auto& c : r.checks) audit[c.key] = c.audit;
+  BOOST_TEST(audit["self_ratio"].find("same data") != std::string::npos);
+  BOOST_TEST(audit["self_reference"].find("cannot fail") != std::string::npos);
+  BOOST_TEST(audit["argmax_in_sweep"].find("cannot fail") != std::string::npos);
+  BOOST_TEST(audit["echo"].find("input echo") != std::string::npos);
+  BOOST_TEST(audit["honest"].empty());
+}
+
+// A recorded check judged again against a changed case file keeps its value and takes the new
+// tolerance (paper-resolution records, whose runs take hours).
+BOOST_AUTO_TEST_CASE(records_are_rejudged_against_the_case_file) {
+  add_toy();
+  const fs::path f = write_case("toy_rejudge", R"(status = "implemented"
+[[series]]
+name = "line"
+model = "toy_linear"
+params = { x = "1 mm" }
+[[checks]]
+key = "k"
+kind = "reproduction"
+metric = "relative"
+value = { series = "line", output = "y" }
+reference = "2.1 mm"
+tolerance = 0.01
+units = "mm"
+source = "test"
+tolerance_source = "test"
+)", "[\"quick\", \"full\"]");
+  const CaseSpec spec = load_case(f, "full");
+  json rec = {{"case", spec.id}, {"status", "PASS"}, {"tier", "full"},
+              {"checks", json::array({{{"key", "k"}, {"value", 2.0}, {"reference", 2.1}, {"status", "PASS"}},
+                                      {{"key", "gone"}, {"value", 1.0}, {"status", "PASS"}}})}};
+  std::vector<std::string> changes;
+  const json out = refresh_record(rec, spec, &changes);
+  BOOST_TEST(out["checks"].size() == 1u);
+  BOOST_TEST(out["checks"][0]["status"].get<std::string>() == "FAIL");  // 2.0 vs 2.1 is 4.8 % > 1 %
+  BOOST_TEST(out["checks"][0]["value"].get<double>() == 2.0);
+  BOOST_TEST(out["status"].get<std::string>() == "FAIL");
+  BOOST_TEST(out["unexpected_failures"].get<int>() == 1);
+  BOOST_TEST(changes.size() == 3u);  // k PASS -> FAIL, gone removed, case PASS -> FAIL
 }

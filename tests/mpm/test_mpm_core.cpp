@@ -352,3 +352,24 @@ BOOST_AUTO_TEST_CASE(position_update_orders_in_free_fall) {
     BOOST_TEST(std::fabs(err[2]) < 1e-5 * std::fabs(err[0]));  // round-off only
   }
 }
+
+// The blow-up guard: a sound state reports no fault; a non-finite velocity, and a particle that
+// leaves the grid, are named with the step and time.
+BOOST_AUTO_TEST_CASE(fault_names_nonfinite_and_escaped_particles) {
+  Bar b;
+  MpmProblem pb = make_bar(b, 10.0, 0.0, false);
+  pb.step();
+  BOOST_TEST(pb.fault().empty());
+  pb.set_velocity(3, std::nan(""), 0.0);
+  pb.step();
+  const std::string f = pb.fault();
+  BOOST_TEST_MESSAGE(f);
+  BOOST_TEST(f.find("non-finite") != std::string::npos);
+  BOOST_TEST(f.find("step 2") != std::string::npos);
+
+  MpmProblem esc = make_bar(b, 10.0, 0.0, false);
+  esc.set_velocity(0, 1e9, 0.0);  // leaves the grid in one step
+  esc.step();
+  esc.step();
+  BOOST_TEST(esc.fault().find("left the grid") != std::string::npos);
+}

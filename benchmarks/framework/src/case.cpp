@@ -1,6 +1,7 @@
 #include "cutbench/framework/case.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -18,6 +19,8 @@ namespace cutbench::framework {
 const std::vector<std::string> kPaperIds = {"nairn2015", "aghababaei2021", "figueiredo2024",
                                             "afrasiabi2021", "kahwash2018"};
 
+const std::vector<std::string> kCheckKinds = {"verification", "reproduction", "validation", "consistency"};
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -25,12 +28,13 @@ namespace {
 const std::set<std::string> kCaseKeys = {
     "id",     "paper",  "item",   "title",       "requirement", "status", "reason",
     "solver", "models", "tiers",  "assumptions", "params",      "tier",   "series",
-    "checks", "plots",  "tables"};
+    "checks", "plots",  "tables", "claim"};
 const std::set<std::string> kSeriesKeys = {"name", "model", "params", "sweep", "rows", "zip", "tier", "tiers", "pending", "link"};
 const std::set<std::string> kCheckKeys = {"key",    "kind",      "metric",        "value",
                                           "reference", "tolerance", "units",      "source",
-                                          "known_failure", "description", "tiers"};
-const std::set<std::string> kKinds = {"verification", "reproduction", "validation"};
+                                          "known_failure", "description", "tiers", "finding",
+                                          "tolerance_source", "scatter", "scatter_source"};
+const std::set<std::string> kKinds(kCheckKinds.begin(), kCheckKinds.end());
 const std::set<std::string> kMetrics = {"relative", "absolute", "within", "curve_max_norm",
                                         "windowed_mean", "feature"};
 const std::set<std::string> kStatuses = {"implemented", "not_implemented"};
@@ -63,20 +67,86 @@ std::string get_string(const json& obj, const std::string& key, const std::strin
   return obj[key].get<std::string>();
 }
 
-// A check's documented failure: one text for every tier, or a table { quick = "...", full = "..." }
-// whose tiers without a text expect the check to pass.
+// A check's documented failure: a table { quick = "...", full = "..." } whose tiers without a text
+// expect the check to pass. A plain string is refused: a text written for the reduced-resolution
+// tier must not excuse a failure at the paper's resolution.
 std::string known_failure_for_tier(const json& check, const std::string& tier, const std::string& where) {
   if (!check.contains("known_failure")) return {};
   const json& kf = check["known_failure"];
-  if (kf.is_string()) return kf.get<std::string>();
-  if (!kf.is_object()) throw InputError(where + "known_failure", "expected a string or a table of tiers (quick, full) to strings");
+  if (!kf.is_object() || kf.empty()) {
+    throw InputError(where + "known_failure",
+                     "expected a table of tiers { quick = \"...\", full = \"...\" } naming the tier(s) that fail");
+  }
   std::string text;
   for (const auto& [t, v] : kf.items()) {
     if (!kTiers.count(t)) throw InputError(where + "known_failure." + t, "unknown tier '" + t + "' (expected quick or full)");
-    if (!v.is_string()) throw InputError(where + "known_failure." + t, "expected a string");
+    if (!v.is_string() || v.get<std::string>().empty()) throw InputError(where + "known_failure." + t, "expected a non-empty string");
+    if (v.get<std::string>().size() > kMaxKnownFailureChars) {
+      throw InputError(where + "known_failure." + t,
+                       "at most " + std::to_string(kMaxKnownFailureChars) + " characters (" +
+                           std::to_string(v.get<std::string>().size()) +
+                           " given): one or two sentences; the evidence goes to FINDINGS.md under the check's finding");
+    }
     if (t == tier) text = v.get<std::string>();
   }
   return text;
+}
+
+// Names that become HDF5 groups, XML attributes and file names: letters, digits and _ . + - only.
+void require_name(const std::string& name, const std::string& field) {
+  if (name.empty() || name.size() > 64) throw InputError(field, "a name of 1 to 64 characters");
+  for (const unsigned char ch : name) {
+    if (!(std::isalnum(ch) || ch == '_' || ch == '.' || ch == '+' || ch == '-')) {
+      throw InputError(field, "'" + name + "': only letters, digits and _ . + - (it names HDF5 groups and files)");
+    }
+  }
+}
+
+// Text shown in reports and stored in HDF5 attributes: no control characters.
+void require_text(const std::string& text, const std::string& field) {
+  for (const unsigned char ch : text) {
+    if (ch < 0x20 && ch != '\n' && ch != '\t') throw InputError(field, "text without control characters");
+  }
+}
+
+double quantity(const json& v, Dim dim, const std::string& field);
+
+// Largest relative tolerance: a relative error beyond 10 (1000 %) is no comparison.
+constexpr double kMaxRelativeTolerance = 10.0;
+
+// A check's tolerance, validated when the case is loaded: a finite number >= 0 (relative: at most
+// kMaxRelativeTolerance), a "value unit" string of the check's dimension, or { relative = x } /
+// { absolute = "q unit" }.
+void validate_tolerance(const json& tol, const std::string& metric, const std::string& units, const std::string& field) {
+  const Dim dim = unit_info(units, field).dim;
+  auto finite_nonneg = [&](double v, bool relative, const std::string& f) {
+    if (!(std::isfinite(v) && v >= 0.0)) throw InputError(f, "a finite number >= 0");
+    if (relative && v > kMaxRelativeTolerance) {
+      throw InputError(f, "a relative tolerance of at most " + std::to_string(static_cast<int>(kMaxRelativeTolerance)) +
+                              " (1000 %)");
+    }
+  };
+  if (tol.is_object()) {
+    if (tol.size() != 1 || !(tol.contains("relative") || tol.contains("absolute"))) {
+      throw InputError(field, "expected { relative = x } or { absolute = x }");
+    }
+    if (tol.contains("relative")) {
+      if (!tol["relative"].is_number()) throw InputError(field + ".relative", "a number");
+      finite_nonneg(tol["relative"].get<double>(), true, field + ".relative");
+    } else {
+      finite_nonneg(quantity(tol["absolute"], dim, field + ".absolute"), false, field + ".absolute");
+    }
+    return;
+  }
+  const bool relative = metric == "relative" || metric == "windowed_mean";
+  if (tol.is_number()) {
+    finite_nonneg(tol.get<double>(), relative, field);
+  } else if (tol.is_string() && !relative) {
+    finite_nonneg(std::abs(quantity(tol, dim, field)), false, field);
+  } else {
+    throw InputError(field, relative ? "a number (a fraction of the reference)"
+                                     : "a number in the check's units or a \"value unit\" string");
+  }
 }
 
 std::vector<std::string> get_strings(const json& obj, const std::string& key, const std::string& where) {
@@ -162,6 +232,18 @@ fs::path source_root() {
 #endif
 }
 
+std::vector<std::string> finding_ids(const fs::path& root, const std::string& paper) {
+  std::vector<std::string> ids;
+  std::ifstream in(root / "benchmarks" / paper / "FINDINGS.md");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("## ", 0) != 0) continue;
+    const auto colon = line.find(':', 3);
+    if (colon != std::string::npos) ids.push_back(line.substr(3, colon - 3));
+  }
+  return ids;
+}
+
 std::vector<fs::path> discover_case_files(const fs::path& root) {
   std::vector<fs::path> files;
   for (const auto& paper : kPaperIds) {
@@ -245,7 +327,10 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
   c.paper = get_string(doc, "paper", "");
   c.item = get_string(doc, "item", "");
   c.title = get_string(doc, "title", "");
+  require_text(c.title, "title");
   c.requirement = get_string(doc, "requirement", "");
+  c.claim = get_string(doc, "claim", "", false);
+  if (c.claim.size() > 200) throw InputError("claim", "one line of at most 200 characters");
   c.status = get_string(doc, "status", "");
   c.reason = get_string(doc, "reason", "", false);
   c.solver = get_string(doc, "solver", "");
@@ -298,6 +383,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       check_keys(s, kSeriesKeys, where);
       SeriesSpec ss;
       ss.name = get_string(s, "name", where + ".");
+      require_name(ss.name, where + ".name");
       const auto series_tiers = get_strings(s, "tiers", where + ".");
       for (const auto& t : series_tiers) {
         if (!kTiers.count(t)) throw InputError(where + ".tiers", "unknown tier '" + t + "' (expected quick or full)");
@@ -305,6 +391,9 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       if (!series_tiers.empty() &&
           std::find(series_tiers.begin(), series_tiers.end(), tier) == series_tiers.end()) {
         continue;  // this series belongs to another tier
+      }
+      for (const auto& prev : c.series) {  // one name per series of a tier (HDF5 groups)
+        if (prev.name == ss.name) throw InputError(where + ".name", "duplicate series name '" + ss.name + "'");
       }
       ss.model = get_string(s, "model", where + ".");
       const std::string sw = "series '" + ss.name + "'.";
@@ -349,12 +438,15 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       auto sweep_values = [&](const json& sweep, const ParamSpec& p, const std::string& f) {
         std::vector<double> vals;
         if (sweep.contains("values")) {
+          if (!sweep["values"].is_array()) throw InputError(f + ".values", "an array of values");
           for (const auto& v : sweep["values"]) vals.push_back(quantity(v, p.dim, f + ".values"));
         } else if (sweep.contains("from") && sweep.contains("to") && sweep.contains("n")) {
           const double a = quantity(sweep["from"], p.dim, f + ".from");
           const double b = quantity(sweep["to"], p.dim, f + ".to");
+          if (!sweep["n"].is_number_integer() || sweep["n"].get<long long>() < 1 || sweep["n"].get<long long>() > 100000) {
+            throw InputError(f + ".n", "a whole number of points in 1..100000 (got " + sweep["n"].dump() + ")");
+          }
           const int n = sweep["n"].get<int>();
-          if (n < 1 || n > 100000) throw InputError(f + ".n", "expected 1..100000 points");
           vals = linspace(a, b, n);
         } else {
           throw InputError(f, "give either values = [...] or from, to, n");
@@ -378,6 +470,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
           const ParamSpec* p = find_param(*pspecs, k);
           if (!p) throw InputError(sw + "zip." + k, "unknown parameter of '" + ss.model + "'");
           std::vector<double> vals;
+          if (!v.is_array()) throw InputError(sw + "zip." + k, "an array of values");
           for (const auto& x : v) vals.push_back(quantity(x, p->dim, sw + "zip." + k));
           if (vals.size() != ss.sweep->values.size()) {
             throw InputError(sw + "zip." + k, "has " + std::to_string(vals.size()) + " values, sweep has " +
@@ -396,6 +489,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
         const json row_params = rows.value("params", json::object());
         for (const auto& [k, v] : row_params.items()) {
           if (!find_param(*pspecs, k)) throw InputError(sw + "rows.params." + k, "unknown parameter of '" + ss.model + "'");
+          if (!v.is_string()) throw InputError(sw + "rows.params." + k, "the name of a column of the reference table");
           const auto col = v.get<std::string>();
           const auto& column = t.column(col);
           const ParamSpec* p = find_param(*pspecs, k);
@@ -412,7 +506,8 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       if (s.contains("link")) {
         for (const auto& [k, v] : s["link"].items()) {
           if (!find_param(*pspecs, k)) throw InputError(sw + "link." + k, "unknown parameter of '" + ss.model + "'");
-          if (!v.is_object() || !v.contains("series") || !v.contains("output")) {
+          if (!v.is_object() || !v.contains("series") || !v.contains("output") || !v["series"].is_string() ||
+              !v["output"].is_string()) {
             throw InputError(sw + "link." + k, "expected { series = \"name\", output = \"column\" }");
           }
           const std::string from = v["series"].get<std::string>();
@@ -450,6 +545,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
   if (doc.contains("checks")) {
     std::size_t idx = 0;
     std::set<std::string> keys;
+    std::vector<std::string> findings;  // read on first use
     for (const auto& ch : doc["checks"]) {
       const std::string where = "checks[" + std::to_string(idx++) + "]";
       check_keys(ch, kCheckKeys, where);
@@ -458,7 +554,9 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       const std::string cw = "check '" + cs.key + "'.";
       if (!keys.insert(cs.key).second) throw InputError(cw + "key", "duplicate check key");
       cs.kind = get_string(ch, "kind", cw);
-      if (!kKinds.count(cs.kind)) throw InputError(cw + "kind", "'" + cs.kind + "' (expected verification, reproduction or validation)");
+      if (!kKinds.count(cs.kind)) {
+        throw InputError(cw + "kind", "'" + cs.kind + "' (expected verification, reproduction, validation or consistency)");
+      }
       cs.metric = get_string(ch, "metric", cw);
       if (!kMetrics.count(cs.metric)) {
         throw InputError(cw + "metric", "'" + cs.metric + "' (expected relative, absolute, within, curve_max_norm, windowed_mean or feature)");
@@ -467,6 +565,40 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       unit_info(cs.units, cw + "units");
       cs.source = get_string(ch, "source", cw);
       cs.known_failure = known_failure_for_tier(ch, tier, cw);
+      cs.finding = get_string(ch, "finding", cw, false);
+      if (ch.contains("known_failure") && cs.finding.empty()) {
+        throw InputError(cw + "finding", "required with known_failure: the id of its evidence in benchmarks/" + c.paper +
+                                             "/FINDINGS.md");
+      }
+      if (!cs.finding.empty()) {
+        if (findings.empty()) findings = finding_ids(source_root(), c.paper);
+        if (std::find(findings.begin(), findings.end(), cs.finding) == findings.end()) {
+          throw InputError(cw + "finding", "'" + cs.finding + "' is not a finding of benchmarks/" + c.paper +
+                                               "/FINDINGS.md (a heading \"## " + cs.finding + ": title\")");
+        }
+      }
+      cs.tolerance_source = get_string(ch, "tolerance_source", cw, false);
+      if ((cs.kind == "reproduction" || cs.kind == "validation") && cs.tolerance_source.empty()) {
+        throw InputError(cw + "tolerance_source",
+                         "required for a " + cs.kind + " check: the paper's words, its stated error, a measured "
+                         "convergence or scatter study (finding id), or a judgement with its reason");
+      }
+      if (ch.contains("scatter")) {
+        // one quantity, or a table of tiers { quick = ..., full = ... } (scatter depends on resolution)
+        const Dim sdim = unit_info(cs.units, cw + "units").dim;
+        const json& sc = ch["scatter"];
+        const json per_tier = sc.is_object() ? sc : json::object({{tier, sc}});
+        for (const auto& [t, v] : per_tier.items()) {
+          const std::string f = cw + "scatter" + (sc.is_object() ? "." + t : std::string());
+          if (!kTiers.count(t)) throw InputError(f, "unknown tier '" + t + "' (expected quick or full)");
+          const double sv = quantity(v, sdim, f);
+          if (!(std::isfinite(sv) && sv > 0)) throw InputError(f, "a finite positive quantity in the check's units");
+          if (t == tier) cs.scatter = v;
+        }
+        cs.scatter_source = get_string(ch, "scatter_source", cw);
+      } else if (ch.contains("scatter_source")) {
+        throw InputError(cw + "scatter_source", "given without scatter");
+      }
       cs.description = get_string(ch, "description", cw, false);
       cs.tiers = get_strings(ch, "tiers", cw);
       for (const auto& t : cs.tiers) {
@@ -478,6 +610,16 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       cs.value = ch["value"];
       cs.reference = ch["reference"];
       cs.tolerance = ch.value("tolerance", json());
+      if (!cs.value.is_object()) {
+        throw InputError(cw + "value", "a selector of computed data ({ series = ..., output = ... }), not a literal");
+      }
+      const bool range = cs.metric == "within" || (cs.reference.is_array() && cs.reference.size() == 2);
+      if (!range) {
+        if (cs.tolerance.is_null()) throw InputError(cw + "tolerance", "missing");
+        validate_tolerance(cs.tolerance, cs.metric, cs.units, cw + "tolerance");
+      } else if (!cs.reference.is_array() || cs.reference.size() != 2) {
+        throw InputError(cw + "reference", "a range [lo, hi] for metric 'within'");
+      }
       // Reference files must exist now (a missing file is bad input, not a NOT RUN).
       if (cs.reference.is_object() && cs.reference.contains("file")) {
         load_reference(root / "reference_data" / c.paper / cs.reference["file"].get<std::string>(), cw + "reference.file");

@@ -2,7 +2,9 @@
 // CSVs or other series, and the metrics of DESIGN.md.
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <numeric>
+#include <sstream>
 
 #include "cutbench/common/errors.hpp"
 #include "cutbench/framework/runner.hpp"
@@ -18,6 +20,16 @@ struct NotRun {
 struct Pending {
   std::string why;
 };
+// Thrown when a completed solver run does not define the quantity a check reads (no stick zone, no
+// serration to measure): the run does not show what the paper reports, so the check FAILs.
+struct Undefined {
+  std::string why;
+};
+// Thrown when a check depends on a computation that faulted (a series that threw, a non-finite
+// solver output, a blow-up guard): the check is ERROR, never NOT RUN.
+struct Fault {
+  std::string why;
+};
 
 struct Curve {
   std::vector<double> x, y;  // SI
@@ -27,7 +39,7 @@ const SeriesResult& find_series(const std::vector<SeriesResult>& series, const s
   for (const auto& s : series) {
     if (s.name == name) {
       if (!s.pending.empty()) throw Pending{"series '" + name + "' not implemented yet: " + s.pending};
-      if (!s.error.empty()) throw NotRun{"series '" + name + "' failed: " + s.error};
+      if (!s.error.empty()) throw Fault{"series '" + name + "' failed: " + s.error};
       return s;
     }
   }
@@ -146,6 +158,9 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
   if (y.empty()) throw NotRun{"series '" + s.name + "' is empty"};
 
   auto finite_or_notrun = [&](double v) {
+    // a solver's histories are finite (run_series refuses others): a NaN scalar is an output the
+    // run does not define (e.g. no serration to measure, no sticking zone)
+    if (!std::isfinite(v) && s.solver) throw Undefined{"the solver run does not define '" + out + "'"};
     if (!std::isfinite(v)) {
       std::string why = "'" + out + "' is not finite (model not applicable)";
       if (!s.notes.empty()) why += ": " + s.notes.front();
@@ -290,46 +305,112 @@ double reference_value(const CaseSpec& spec, const std::vector<SeriesResult>& se
   throw InputError(field, "expected a number, \"value unit\", [lo, hi], a file reference or a selector");
 }
 
+// A verdict that the measured run-to-run scatter of the value could flip is INCONCLUSIVE: the value
+// lies within `scatter` of a pass/fail boundary.
+void apply_scatter(CheckRecord& r) {
+  if (!(r.scatter > 0) || (r.status != "PASS" && r.status != "FAIL")) return;
+  std::vector<double> bounds;
+  if (r.is_range) {
+    bounds = {r.lower, r.upper};
+  } else if (r.metric == "curve_max_norm") {
+    bounds = {r.tolerance};
+  } else {
+    const double half = r.relative_tol ? r.tolerance * std::abs(r.reference) : r.tolerance;
+    bounds = {r.reference - half, r.reference + half};
+  }
+  double nearest = bounds[0];
+  for (double b : bounds) {
+    if (std::isfinite(b) && std::abs(r.value - b) < std::abs(r.value - nearest)) nearest = b;
+  }
+  if (std::isfinite(nearest) && std::abs(r.value - nearest) < r.scatter) {
+    std::ostringstream os;
+    os << std::setprecision(4) << "value " << r.value << " lies " << std::abs(r.value - nearest)
+       << " from the boundary " << nearest << " " << r.units << ", inside the measured scatter " << r.scatter
+       << " (would be " << r.status << ")";
+    r.status = "INCONCLUSIVE";
+    r.message = os.str();
+  }
+}
+
+// A check's record before evaluation: identity, texts, units and scatter from the case file.
+CheckRecord record_header(const CaseSpec& spec, const CheckSpec& cs) {
+  CheckRecord r;
+  r.case_id = spec.id;
+  r.key = cs.key;
+  r.kind = cs.kind;
+  r.metric = cs.metric;
+  r.units = cs.units;
+  r.source = cs.source;
+  r.known_failure = cs.known_failure;
+  r.description = cs.description;
+  r.finding = cs.finding;
+  r.tolerance_source = cs.tolerance_source;
+  const std::string field = "check '" + cs.key + "'";
+  const Dim dim = unit_info(cs.units, field + ".units").dim;
+  if (cs.scatter.is_number()) {  // a number is in the check's units, as a tolerance
+    r.scatter = cs.scatter.get<double>();
+    r.scatter_source = cs.scatter_source;
+  } else if (!cs.scatter.is_null()) {  // a spread: a temperature scatter is a difference, not a level
+    r.scatter = from_si(qty(cs.scatter, dim, field + ".scatter"), cs.units, field) -
+                (dim == Dim::temperature ? from_si(0.0, cs.units, field) : 0.0);
+    r.scatter_source = cs.scatter_source;
+  }
+  return r;
+}
+
+// Tolerance: relative number or absolute quantity (in the check's units).
+void set_tolerance(CheckRecord& r, const CheckSpec& cs) {
+  const std::string field = "check '" + cs.key + "'";
+  const Dim dim = unit_info(cs.units, field + ".units").dim;
+  auto disp = [&](double si) { return from_si(si, cs.units, field + ".units"); };
+  const json& tol = cs.tolerance;
+  if (tol.is_null()) throw InputError(field + ".tolerance", "missing");
+  if (tol.is_object()) {
+    if (tol.contains("relative")) {
+      r.relative_tol = true;
+      r.tolerance = tol["relative"].get<double>();
+    } else if (tol.contains("absolute")) {
+      r.tolerance = disp(qty(tol["absolute"], dim, field + ".tolerance.absolute")) -
+                    (dim == Dim::temperature ? disp(0.0) : 0.0);
+    } else {
+      throw InputError(field + ".tolerance", "expected { relative = x } or { absolute = x }");
+    }
+  } else if (cs.metric == "relative" || cs.metric == "windowed_mean") {
+    r.relative_tol = true;
+    r.tolerance = tol.get<double>();
+  } else {
+    r.tolerance = tol.is_string() ? disp(qty(tol, dim, field + ".tolerance")) : tol.get<double>();
+  }
+  if (!(r.tolerance >= 0)) throw InputError(field + ".tolerance", "must be >= 0");
+}
+
+// PASS or FAIL from the value against a range, or against the reference and tolerance.
+void judge(CheckRecord& r) {
+  if (r.is_range) {
+    if (r.lower > r.upper) std::swap(r.lower, r.upper);
+    r.error = r.value < r.lower ? r.value - r.lower : (r.value > r.upper ? r.value - r.upper : 0.0);
+    r.status = (r.value >= r.lower && r.value <= r.upper) ? "PASS" : "FAIL";
+  } else if (r.relative_tol) {
+    r.error = r.reference != 0.0 ? (r.value - r.reference) / std::abs(r.reference) : r.value;
+    r.status = std::abs(r.error) <= r.tolerance * (1 + 1e-12) ? "PASS" : "FAIL";
+  } else {
+    r.error = r.value - r.reference;
+    r.status = std::abs(r.error) <= r.tolerance * (1 + 1e-12) ? "PASS" : "FAIL";
+  }
+  apply_scatter(r);
+}
+
 }  // namespace
 
 std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector<SeriesResult>& series,
                                          ReferenceCache& refs) {
   std::vector<CheckRecord> records;
   for (const auto& cs : spec.checks) {
-    CheckRecord r;
-    r.case_id = spec.id;
-    r.key = cs.key;
-    r.kind = cs.kind;
-    r.metric = cs.metric;
-    r.units = cs.units;
-    r.source = cs.source;
-    r.known_failure = cs.known_failure;
-    r.description = cs.description;
+    CheckRecord r = record_header(spec, cs);
     const std::string field = "check '" + cs.key + "'";
     const Dim dim = unit_info(cs.units, field + ".units").dim;
     auto disp = [&](double si) { return from_si(si, cs.units, field + ".units"); };
-    // Tolerance: relative number or absolute quantity.
-    auto set_tolerance = [&]() {
-      const json& tol = cs.tolerance;
-      if (tol.is_null()) throw InputError(field + ".tolerance", "missing");
-      if (tol.is_object()) {
-        if (tol.contains("relative")) {
-          r.relative_tol = true;
-          r.tolerance = tol["relative"].get<double>();
-        } else if (tol.contains("absolute")) {
-          r.tolerance = disp(qty(tol["absolute"], dim, field + ".tolerance.absolute")) -
-                        (dim == Dim::temperature ? disp(0.0) : 0.0);
-        } else {
-          throw InputError(field + ".tolerance", "expected { relative = x } or { absolute = x }");
-        }
-      } else if (cs.metric == "relative" || cs.metric == "windowed_mean") {
-        r.relative_tol = true;
-        r.tolerance = tol.get<double>();
-      } else {
-        r.tolerance = tol.is_string() ? disp(qty(tol, dim, field + ".tolerance")) : tol.get<double>();
-      }
-      if (!(r.tolerance >= 0)) throw InputError(field + ".tolerance", "must be >= 0");
-    };
+    auto set_tolerance = [&]() { framework::set_tolerance(r, cs); };
 
     if (!spec.implemented()) {
       r.status = "NOT IMPLEMENTED";
@@ -393,34 +474,34 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
         r.has_value = r.has_reference = true;
         r.status = r.value <= r.tolerance ? "PASS" : "FAIL";
         r.message = "max-norm over " + std::to_string(used) + " reference points";
+        apply_scatter(r);
       } else {
         r.value = disp(select(series, cs.value, field + ".value"));
         r.has_value = true;
-        if (!std::isfinite(r.value)) throw NotRun{"value is not finite"};
+        if (!std::isfinite(r.value)) throw Fault{"value is not finite"};
         if (cs.metric == "within" || (cs.reference.is_array() && cs.reference.size() == 2)) {
           r.is_range = true;
           r.lower = disp(reference_value(spec, series, cs.reference.at(0), dim, refs, field + ".reference[0]", cs.units));
           r.upper = disp(reference_value(spec, series, cs.reference.at(1), dim, refs, field + ".reference[1]", cs.units));
-          if (r.lower > r.upper) std::swap(r.lower, r.upper);
           r.has_reference = true;
-          r.error = r.value < r.lower ? r.value - r.lower : (r.value > r.upper ? r.value - r.upper : 0.0);
-          r.status = (r.value >= r.lower && r.value <= r.upper) ? "PASS" : "FAIL";
         } else {
           set_tolerance();
           r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference", cs.units));
           r.has_reference = true;
-          if (!std::isfinite(r.reference)) throw NotRun{"reference is not finite"};
-          if (r.relative_tol) {
-            r.error = r.reference != 0.0 ? (r.value - r.reference) / std::abs(r.reference) : r.value;
-          } else {
-            r.error = r.value - r.reference;
-          }
-          r.status = std::abs(r.error) <= r.tolerance * (1 + 1e-12) ? "PASS" : "FAIL";
+          if (!std::isfinite(r.reference)) throw Fault{"reference is not finite"};
         }
+        judge(r);
       }
       if (r.status == "PASS" && !r.known_failure.empty()) {
         r.message = "passes although declared a known failure: revisit known_failure";
       }
+    } catch (const Fault& f) {
+      r.status = "ERROR";
+      r.message = f.why;
+    } catch (const Undefined& u) {
+      r.status = "FAIL";
+      r.has_value = false;
+      r.message = u.why;
     } catch (const NotRun& nr) {
       r.status = "NOT RUN";
       r.message = nr.why;
@@ -434,11 +515,86 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
         }
       } catch (const NotRun&) {
       } catch (const Pending&) {
+      } catch (const Fault&) {
       }
     }
     records.push_back(r);
   }
   return records;
+}
+
+CheckRecord rejudge_check(const CaseSpec& spec, const CheckSpec& cs, const json& recorded, ReferenceCache& refs) {
+  CheckRecord r = record_header(spec, cs);
+  const std::string field = "check '" + cs.key + "'";
+  const Dim dim = unit_info(cs.units, field + ".units").dim;
+  auto disp = [&](double si) { return from_si(si, cs.units, field + ".units"); };
+  const std::vector<SeriesResult> none;
+  // a literal or a reference-file value is read from the case file as it is now; a reference that a
+  // selector computed from the run's data is kept as recorded
+  auto from_case = [](const json& ref) {
+    return ref.is_number() || ref.is_string() || (ref.is_object() && (ref.contains("file") || ref.contains("unavailable")));
+  };
+  const bool range = cs.metric == "within" || (cs.reference.is_array() && cs.reference.size() == 2);
+  if (!range) set_tolerance(r, cs);
+  const json& rv = recorded.value("value", json());
+  if (!rv.is_number()) {
+    r.status = recorded.value("status", std::string("NOT RUN"));
+    r.message = recorded.value("message", std::string());
+    // a solver output the run did not define was recorded as NOT RUN: it is a FAIL (Undefined)
+    const std::string series = cs.value.is_object() ? cs.value.value("series", std::string()) : std::string();
+    const bool solver = std::any_of(spec.series.begin(), spec.series.end(),
+                                    [&](const SeriesSpec& ss) { return ss.name == series && ss.solver; });
+    if (r.status == "NOT RUN" && solver && r.message.find("is not finite") != std::string::npos) {
+      r.status = "FAIL";
+      r.message = "the solver run does not define '" + cs.value.value("output", std::string()) + "'";
+    }
+    return r;
+  }
+  r.value = rv.get<double>();
+  r.has_value = true;
+  try {
+    if (cs.metric == "curve_max_norm") {
+      r.reference = 0.0;
+      r.error = r.value;
+      r.has_reference = true;
+      r.status = r.value <= r.tolerance ? "PASS" : "FAIL";
+      r.message = recorded.value("message", std::string());
+      apply_scatter(r);
+      return r;
+    }
+    const json& rref = recorded.value("reference", json());
+    if (range) {
+      r.is_range = true;
+      for (int k = 0; k < 2; ++k) {
+        const json& ref = cs.reference.at(static_cast<std::size_t>(k));
+        double& bound = k == 0 ? r.lower : r.upper;
+        if (from_case(ref)) {
+          bound = disp(reference_value(spec, none, ref, dim, refs, field + ".reference", cs.units));
+        } else if (rref.is_array() && rref.size() == 2 && rref[static_cast<std::size_t>(k)].is_number()) {
+          bound = rref[static_cast<std::size_t>(k)].get<double>();
+        } else {
+          throw NotRun{"the record holds no reference bound"};
+        }
+      }
+    } else {
+      if (from_case(cs.reference)) {
+        r.reference = disp(reference_value(spec, none, cs.reference, dim, refs, field + ".reference", cs.units));
+      } else if (rref.is_number()) {
+        r.reference = rref.get<double>();
+      } else {
+        throw NotRun{"the record holds no reference"};
+      }
+    }
+    r.has_reference = true;
+    judge(r);
+    if (r.status == "PASS" && !r.known_failure.empty()) {
+      r.message = "passes although declared a known failure: revisit known_failure";
+    }
+  } catch (const NotRun& nr) {
+    r.status = "NOT RUN";
+    r.message = nr.why;
+  }
+  return r;
 }
 
 }  // namespace cutbench::framework

@@ -143,6 +143,13 @@ json check_to_json(const CheckRecord& r) {
   j["status"] = r.status;
   j["source"] = r.source;
   if (!r.known_failure.empty()) j["known_failure"] = r.known_failure;
+  if (!r.finding.empty()) j["finding"] = r.finding;
+  if (!r.tolerance_source.empty()) j["tolerance_source"] = r.tolerance_source;
+  if (r.scatter > 0) {
+    j["scatter"] = r.scatter;
+    j["scatter_source"] = r.scatter_source;
+  }
+  if (!r.audit.empty()) j["audit"] = r.audit;
   if (!r.description.empty()) j["description"] = r.description;
   if (!r.message.empty()) j["message"] = r.message;
   return j;
@@ -154,7 +161,10 @@ json case_result_to_json(const CaseSpec& spec, const CaseResult& r) {
   j["paper"] = spec.paper;
   j["item"] = spec.item;
   j["title"] = spec.title;
+  if (!spec.claim.empty()) j["claim"] = spec.claim;
   j["tier"] = r.tier;
+  j["solver"] = spec.solver;
+  if (!r.solver_sources.empty()) j["solver_sources"] = r.solver_sources;
   j["status"] = r.status;
   j["date"] = r.date;
   j["software"] = software_version();
@@ -163,6 +173,7 @@ json case_result_to_json(const CaseSpec& spec, const CaseResult& r) {
   int unexpected = 0;
   for (const auto& c : r.checks) unexpected += (c.status == "FAIL" && c.known_failure.empty()) ? 1 : 0;
   j["unexpected_failures"] = unexpected;
+  j["audited"] = true;  // every PASS/FAIL check carries the perturbation audit (empty `audit`: can fail)
   j["checks"] = json::array();
   for (const auto& c : r.checks) j["checks"].push_back(check_to_json(c));
   json notes = json::array();

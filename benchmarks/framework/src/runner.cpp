@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <numeric>
 
@@ -10,6 +11,7 @@
 #endif
 
 #include "cutbench/analytic/models.hpp"
+#include "cutbench/framework/audit.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/framework/run_cache.hpp"
 #include "cutbench/common/checkpoint.hpp"
@@ -45,6 +47,10 @@ const char* build_settings_mpm();
 const char* build_settings_sph();
 const char* build_settings_limit();
 const char* build_settings_efg();
+const char* sources_digest_mpm();
+const char* sources_digest_sph();
+const char* sources_digest_limit();
+const char* sources_digest_efg();
 }  // namespace cutbench::framework::detail
 
 namespace cutbench::framework {
@@ -84,6 +90,23 @@ void register_all() {
 #ifdef CUTBENCH_HAVE_EFG
   register_method(efg::register_solvers, detail::source_identity_efg(), detail::build_settings_efg());
 #endif
+}
+
+std::string solver_sources(const std::string& method) {
+#ifdef CUTBENCH_HAVE_MPM
+  if (method == "mpm") return detail::sources_digest_mpm();
+#endif
+#ifdef CUTBENCH_HAVE_SPH
+  if (method == "sph") return detail::sources_digest_sph();
+#endif
+#ifdef CUTBENCH_HAVE_LIMIT
+  if (method == "limit") return detail::sources_digest_limit();
+#endif
+#ifdef CUTBENCH_HAVE_EFG
+  if (method == "efg") return detail::sources_digest_efg();
+#endif
+  (void)method;
+  return {};
 }
 
 RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressFn& progress, bool* reused,
@@ -144,6 +167,23 @@ std::vector<std::string> varied_params(const SeriesSpec& s) {
   return names;
 }
 
+// A solver run whose histories hold a non-finite value has faulted (a blow-up the solver's own
+// guards missed): the series is an ERROR, never a source of NOT RUN checks. (A NaN scalar is a
+// quantity the run does not define, e.g. mu_sticking without a sticking zone: checks on it are
+// NOT RUN with that reason.)
+void require_finite(const RunOutput& run, const std::string& where) {
+  for (const auto& t : run.tables) {
+    for (const auto& [name, col] : t.columns) {
+      for (std::size_t i = 0; i < col.size(); ++i) {
+        if (!std::isfinite(col[i])) {
+          throw std::runtime_error(where + ": non-finite value in history '" + t.name + "', column '" + name +
+                                   "', row " + std::to_string(i));
+        }
+      }
+    }
+  }
+}
+
 SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const ProgressFn& progress,
                         double frac0, double frac1) {
   SeriesResult out;
@@ -202,9 +242,10 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
     bool reused = false;
     std::string cache_path;
     RunOutput run = solver_run(*sv, params, inner, &reused, &cache_path);
+    require_finite(run, s.name + " point " + std::to_string(k + 1));
     if (reused) {
       run.notes.push_back("point " + std::to_string(k + 1) + " of series '" + s.name + "' reused from the run cache (" +
-                          cache_path + ")");
+                          std::filesystem::path(cache_path).filename().string() + ")");
     }
     for (const auto& o : sv->scalars) {
       auto it = run.scalars.find(o.name);
@@ -236,14 +277,18 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
 
 std::string case_status(const CaseSpec& spec, const std::vector<CheckRecord>& checks) {
   if (!spec.implemented()) return "NOT IMPLEMENTED";
-  int pass = 0, fail = 0, not_run = 0, pending = 0;
+  int pass = 0, fail = 0, not_run = 0, pending = 0, error = 0, inconclusive = 0;
   for (const auto& c : checks) {
     if (c.status == "FAIL") ++fail;  // a documented known failure is still a FAIL (it only spares the gate)
     else if (c.status == "PASS") ++pass;
+    else if (c.status == "ERROR") ++error;
+    else if (c.status == "INCONCLUSIVE") ++inconclusive;
     else if (c.status == "NOT RUN") ++not_run;
     else ++pending;
   }
+  if (error) return "ERROR";
   if (fail) return "FAIL";
+  if (inconclusive) return "INCONCLUSIVE";
   if (pass) return "PASS";
   if (not_run) return "NOT RUN";
   return pending ? "NOT IMPLEMENTED" : "NOT RUN";
@@ -358,7 +403,15 @@ CaseResult run_case(const CaseSpec& spec, const std::string& tier, const Progres
     }
   }
   r.checks = evaluate_checks(spec, r.series, refs);
+  for (std::size_t k = 0; k < r.checks.size(); ++k) {  // can each check fail? (audit.cpp)
+    r.checks[k].audit = audit_check(spec, spec.checks[k], r.checks[k], r.series, refs);
+  }
   r.status = case_status(spec, r.checks);
+  // a series that faulted makes the case an ERROR even when no check reads it
+  for (const auto& s : r.series) {
+    if (!s.error.empty()) r.status = "ERROR";
+  }
+  if (spec.solver != "analytic") r.solver_sources = solver_sources(spec.solver);
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

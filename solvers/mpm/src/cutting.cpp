@@ -152,7 +152,10 @@ std::vector<ParamSpec> cutting_params() {
            1.0),
       param("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 100.0, 0.0,
            1e9),
-      param("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 1.0, false),
+      // at most NairnMPM's default time-step factor (0.5 of the cell crossing time): the explicit
+      // update with GIMP shape functions, contact and large strains diverges well before the
+      // linear limit 1 (cfl = 0.99 sends particles off the grid)
+      param("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 0.5, false),
       param("contact_detection", Dim::dimensionless,
            "0 = velocity test only, 1 = nodal centres of mass closer than contact_gap_factor*dx, "
            "2 = particle domains touch (within contact_gap_factor*dx)",
@@ -262,6 +265,10 @@ void mean_std(const std::vector<double>& v, double& mean, double& sd) {
 }
 }  // namespace
 
+// Step-count bound of one run: far beyond any paper-resolution case (about 2e5 steps), small enough
+// that a mistyped total_time is refused instead of overflowing the step count or running for weeks.
+constexpr double kMaxSteps = 1e8;
+
 RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   ModelSpec spec;
   spec.name = "mpm_cutting";
@@ -291,9 +298,22 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   const double t_window = v.at("steady_start_fraction") * T;
   bool window_open = false;
   double e_at_window = 0.0, eI_at_window = 0.0;
-  const long max_steps = static_cast<long>(std::ceil(T / pb.dt())) + 1;
+  const double steps_needed = std::ceil(T / pb.dt());
+  if (!(steps_needed <= kMaxSteps)) {
+    std::ostringstream os;
+    os << "total_time " << T << " s needs " << steps_needed << " steps of " << pb.dt() << " s (at most "
+       << kMaxSteps << ")";
+    throw std::runtime_error(os.str());
+  }
+  const long max_steps = static_cast<long>(steps_needed) + 1;
   for (long k = 0; k < max_steps && pb.time() < T - 0.5 * pb.dt(); ++k) {
     pb.step();
+    // blow-up guard: a non-finite state or a particle off the grid stops the run (every 16 steps
+    // and at the last, so that the scan costs a fraction of a step)
+    if (k % 16 == 15 || k + 1 == max_steps || !std::isfinite(pb.contact_forces().total.x())) {
+      const std::string f = pb.fault();
+      if (!f.empty()) throw std::runtime_error("MPM run stopped: " + f);
+    }
     if (!window_open && pb.time() >= t_window - 0.5 * pb.dt()) {
       window_open = true;
       e_at_window = pb.released_energy();
@@ -329,6 +349,7 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
       next_progress += 0.01;
     }
   }
+  if (const std::string f = pb.fault(); !f.empty()) throw std::runtime_error("MPM run stopped: " + f);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   Table forces;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #ifdef _OPENMP
@@ -147,6 +148,22 @@ int MpmProblem::field_of(double xp, double yp, int side_p, double xi, double yi)
   const double dy = yi - yp;
   if ((yp - c.y) * (yi - c.y) < 0.0 && std::fabs(dy) > 0.0) xc = xp + (xi - xp) * (c.y - yp) / dy;
   return xc <= c.x_end ? 1 : 0;
+}
+
+std::string MpmProblem::fault() const {
+  for (std::size_t p = 0; p < x_.size(); ++p) {
+    const bool finite = std::isfinite(x_[p]) && std::isfinite(y_[p]) && std::isfinite(vx_[p]) && std::isfinite(vy_[p]) &&
+                        std::isfinite(txx_[p]) && std::isfinite(txy_[p]) && std::isfinite(tyy_[p]) &&
+                        std::isfinite(tzz_[p]);
+    if (!finite || frozen_[p]) {
+      std::ostringstream os;
+      os << "particle " << id_[p] << (rigid_[p] ? " (tool)" : "") << " at (" << x_[p] << ", " << y_[p] << ") m "
+         << (finite ? "left the grid" : "has a non-finite position, velocity or stress") << " at step " << steps_
+         << ", t = " << time_ << " s";
+      return os.str();
+    }
+  }
+  return {};
 }
 
 bool MpmProblem::compute_shape(std::size_t p) {

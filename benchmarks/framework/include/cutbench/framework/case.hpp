@@ -47,13 +47,17 @@ struct SeriesSpec {
 
 struct CheckSpec {
   std::string key, kind, metric, units, source, known_failure, description;
+  std::string finding;           // id of the evidence in benchmarks/<paper>/FINDINGS.md ("F03")
+  std::string tolerance_source;  // where the tolerance comes from (required for reproduction/validation)
+  json scatter;                  // measured run-to-run scatter of the value (check units), or null
+  std::string scatter_source;
   std::vector<std::string> tiers;  // evaluated only in these tiers (empty: every tier)
   json value, reference, tolerance;
 };
 
 struct CaseSpec {
   std::filesystem::path file;
-  std::string id, paper, item_id, item, title, requirement, solver, status, reason;
+  std::string id, paper, item_id, item, title, requirement, claim, solver, status, reason;
   std::vector<std::string> models, tiers, assumptions;
   std::vector<SeriesSpec> series;
   std::vector<CheckSpec> checks;
@@ -62,6 +66,16 @@ struct CaseSpec {
   bool implemented() const { return status == "implemented"; }
   bool in_tier(const std::string& tier) const;
 };
+
+// Check kinds. `consistency` checks test our own models against themselves (they hold by
+// construction or compare a formula with itself): shown apart, never counted as reproduction or
+// validation of a paper.
+extern const std::vector<std::string> kCheckKinds;
+// Longest known_failure text per tier: one or two sentences; the evidence lives in FINDINGS.md.
+constexpr std::size_t kMaxKnownFailureChars = 300;
+
+// The finding ids ("F01", ...) of benchmarks/<paper>/FINDINGS.md: headings "## F01: title".
+std::vector<std::string> finding_ids(const std::filesystem::path& root, const std::string& paper);
 
 class ReferenceCache;
 // The points of a series: each a full parameter set (SI) for one evaluation or solver run.

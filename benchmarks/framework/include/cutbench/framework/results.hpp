@@ -22,17 +22,25 @@ struct SeriesResult {
 
 struct CheckRecord {
   std::string case_id, key, kind, metric, units, source, known_failure, description;
+  std::string finding, tolerance_source, scatter_source;
+  double scatter = 0.0;  // measured run-to-run scatter of the value (check units); 0: none given
+  // Why the check cannot change its verdict when its computed data are perturbed (audit.cpp);
+  // empty when it can fail.
+  std::string audit;
   double value = 0.0, reference = 0.0, lower = 0.0, upper = 0.0, tolerance = 0.0, error = 0.0;
   bool has_value = false, has_reference = false, is_range = false, relative_tol = false;
-  std::string status;   // PASS, FAIL, NOT RUN, NOT IMPLEMENTED
+  std::string status;   // PASS, FAIL, ERROR, INCONCLUSIVE, NOT RUN, NOT IMPLEMENTED
   std::string message;  // why NOT RUN, what failed
 };
 
 struct CaseResult {
-  std::string case_id, tier, status;  // status: PASS, FAIL, NOT RUN, NOT IMPLEMENTED
+  std::string case_id, tier, status;  // status: as a check's, the worst of them (case_status)
   std::vector<SeriesResult> series;
   std::vector<CheckRecord> checks;
   double wall_time_s = 0.0;
+  // SHA-256 over the sources of the case's solver method (its source identity without the build
+  // settings): a paper-resolution record made by other solver sources is stale. Empty: analytic.
+  std::string solver_sources;
   int threads = 1;
   std::string date;
 };

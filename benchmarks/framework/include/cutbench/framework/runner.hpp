@@ -14,6 +14,10 @@ namespace cutbench::framework {
 // Register every analytic model and solver that this build contains (idempotent).
 void register_all();
 
+// The sources digest of a solver method ("mpm", "sph", "limit", "efg"): its source identity without
+// the build settings (cmake/source_identity.cmake). Empty for a method this build lacks.
+std::string solver_sources(const std::string& method);
+
 // Compute the series of a case (analytic models and solver runs) and evaluate its checks.
 CaseResult run_case(const CaseSpec& spec, const std::string& tier, const ProgressFn& progress);
 
@@ -43,6 +47,12 @@ RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressF
 // Evaluate the checks of a case against computed series.
 std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector<SeriesResult>& series,
                                          ReferenceCache& refs);
+
+// A recorded check judged again against the case file as it is now (paper-resolution records, whose
+// runs take hours): the recorded value, and a reference that a selector computed from the run's
+// data, are kept; kind, texts, tolerance, window and literal or reference-file values come from
+// the case file.
+CheckRecord rejudge_check(const CaseSpec& spec, const CheckSpec& cs, const json& recorded, ReferenceCache& refs);
 
 // Overall status: NOT IMPLEMENTED; else FAIL if any check failed (documented known failures
 // included: they stay visible, they only do not fail the exit code); else PASS if any passed;

@@ -14,6 +14,7 @@
 #include <Eigen/Dense>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "cutbench/mpm/cohesive.hpp"
@@ -148,6 +149,9 @@ public:
   double crack_tip_x() const;       // centre of the first intact cohesive segment (x_end if none)
   double released_energy() const;   // J/m, sum over failed segments of (J_I + J_II) * length
   double mode1_fraction() const;    // sum J_I len / sum (J_I + J_II) len over failed segments
+  // Empty while the state is sound; else what went wrong, naming the particle: a non-finite
+  // position, velocity or stress, or a particle that left the grid (a blow-up).
+  std::string fault() const;
 
   // Particle access (index order changes when particles are sorted; id() is the insertion index).
   std::size_t id(std::size_t p) const { return id_[p]; }

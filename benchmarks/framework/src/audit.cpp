@@ -1,0 +1,217 @@
+// Can every counted check fail? The audit perturbs the computed data a check's value reads and
+// re-evaluates the check: a check whose verdict no perturbation changes cannot fail (or cannot
+// pass), whatever the solver computes. Static rules catch what needs no data: a literal value, a
+// value and a reference that select the same data, a value that echoes an input of its series.
+#include "cutbench/framework/audit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <tuple>
+
+#include "cutbench/common/units.hpp"
+
+namespace cutbench::framework {
+namespace {
+
+// One column a value selector reads: series, run (-1: the series table), table and column.
+struct Leaf {
+  std::string series;
+  long run = -1;
+  std::string table, column;
+  bool operator<(const Leaf& o) const {
+    return std::tie(series, run, table, column) < std::tie(o.series, o.run, o.table, o.column);
+  }
+};
+
+void collect_leaves(const json& sel, std::set<Leaf>& out) {
+  if (!sel.is_object()) return;
+  for (const char* op : {"ratio", "difference", "product"}) {
+    if (sel.contains(op) && sel[op].is_array()) {
+      for (const auto& s : sel[op]) collect_leaves(s, out);
+      return;
+    }
+  }
+  if (!sel.contains("series") || !sel.contains("output") || !sel["series"].is_string() || !sel["output"].is_string()) {
+    return;
+  }
+  Leaf l;
+  l.series = sel["series"].get<std::string>();
+  l.column = sel["output"].get<std::string>();
+  if (sel.contains("run") && sel["run"].is_number_integer()) {
+    l.run = sel["run"].get<long>();
+    l.table = sel.value("table", std::string());
+  }
+  out.insert(l);
+}
+
+std::vector<double>* find_column(std::vector<SeriesResult>& series, const Leaf& l) {
+  for (auto& s : series) {
+    if (s.name != l.series) continue;
+    Table* t = nullptr;
+    if (l.run < 0) {
+      t = &s.table;
+    } else if (static_cast<std::size_t>(l.run) < s.runs.size()) {
+      for (auto& tab : s.runs[static_cast<std::size_t>(l.run)].tables) {
+        if (tab.name == l.table) t = &tab;
+      }
+    }
+    if (!t) return nullptr;
+    auto it = t->columns.find(l.column);
+    return it == t->columns.end() ? nullptr : &it->second;
+  }
+  return nullptr;
+}
+
+// The parameters a series varies or fixes: a value reading one of them echoes an input.
+std::set<std::string> series_inputs(const SeriesSpec& s) {
+  std::set<std::string> in;
+  if (s.sweep) {
+    in.insert(s.sweep->param);
+    for (const auto& [k, v] : s.zip) in.insert(k);
+  }
+  if (s.rows) {
+    for (const auto& [k, v] : s.rows->params) in.insert(k);
+  }
+  return in;
+}
+
+// The perturbations applied to one column, each a function of the column.
+std::vector<std::pair<std::string, std::vector<double>>> perturbations(const std::vector<double>& y,
+                                                                       const std::vector<double>& factors,
+                                                                       const std::vector<double>& offsets) {
+  std::vector<std::pair<std::string, std::vector<double>>> out;
+  double lo = INFINITY, hi = -INFINITY, mean = 0.0;
+  std::size_t n = 0;
+  for (double v : y) {
+    if (!std::isfinite(v)) continue;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+    mean += v;
+    ++n;
+  }
+  if (n == 0) return out;
+  mean /= static_cast<double>(n);
+  std::vector<double> ks = {-1.0, 0.0, 0.5, 0.9, 0.99, 1.01, 1.1, 2.0, 10.0, 1e3};
+  for (double f : factors) {
+    if (std::isfinite(f)) ks.push_back(f);
+  }
+  for (double k : ks) {
+    std::vector<double> p = y;
+    for (auto& v : p) v *= k;
+    out.emplace_back("scaled by " + std::to_string(k), std::move(p));
+  }
+  const double span = std::max({std::abs(mean), hi - lo, 1e-30});
+  for (double d : {-10.0, -1.0, -0.1, 0.1, 1.0, 10.0}) {
+    std::vector<double> p = y;
+    for (auto& v : p) v += d * span;
+    out.emplace_back("shifted", std::move(p));
+  }
+  for (double d : offsets) {  // in the check's units: right for an unscaled value, a guess otherwise
+    if (!std::isfinite(d)) continue;
+    std::vector<double> p = y;
+    for (auto& v : p) v += d;
+    out.emplace_back("offset", std::move(p));
+  }
+  if (y.size() > 1) {
+    std::vector<double> p(y.rbegin(), y.rend());
+    out.emplace_back("reversed", std::move(p));
+    std::vector<double> q = y;  // a single spike at each end in turn
+    q.front() += 10.0 * span;
+    out.emplace_back("spike first", q);
+    q = y;
+    q.back() += 10.0 * span;
+    out.emplace_back("spike last", std::move(q));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string audit_static(const CaseSpec& spec, const CheckSpec& cs) {
+  if (cs.value.is_number()) return "input echo: the value is a literal number, not a computed quantity";
+  if (cs.value == cs.reference) return "same data: the value and the reference select the same data";
+  for (const char* op : {"ratio", "difference"}) {
+    if (cs.value.is_object() && cs.value.contains(op) && cs.value[op].is_array() && cs.value[op].size() == 2 &&
+        cs.value[op][0] == cs.value[op][1]) {
+      return std::string("same data: the ") + op + " of a selector with itself";
+    }
+  }
+  std::set<Leaf> leaves;
+  collect_leaves(cs.value, leaves);
+  if (cs.metric == "curve_max_norm" && cs.reference.is_object() && cs.reference.contains("series") &&
+      cs.value.is_object() && cs.value.value("series", std::string()) == cs.reference.value("series", std::string()) &&
+      cs.value.value("output", std::string()) == cs.reference.value("output", std::string())) {
+    return "same data: the computed and the reference curve are the same series output";
+  }
+  for (const auto& l : leaves) {
+    if (l.run >= 0) continue;
+    for (const auto& s : spec.series) {
+      if (s.name == l.series && series_inputs(s).count(l.column)) {
+        return "input echo: '" + l.column + "' is an input varied by series '" + s.name + "'";
+      }
+    }
+  }
+  return {};
+}
+
+std::string audit_check(const CaseSpec& spec, const CheckSpec& cs, const CheckRecord& base,
+                        std::vector<SeriesResult>& series, ReferenceCache& refs) {
+  if (std::string s = audit_static(spec, cs); !s.empty()) return s;
+  // nothing to perturb: no verdict, or a quantity the run does not define
+  if ((base.status != "PASS" && base.status != "FAIL") || !base.has_value) return {};
+  std::set<Leaf> leaves;
+  collect_leaves(cs.value, leaves);
+  if (leaves.empty()) return {};
+  CaseSpec one = spec;
+  one.checks = {cs};
+  one.plots = json::array();
+  one.tables = json::array();
+  bool can_pass = base.status == "PASS", can_fail = base.status == "FAIL";
+  // scalings that move a value of degree one in the data onto the reference and across each
+  // boundary (a mean, an interpolated point, a ratio's numerator)
+  std::vector<double> factors, offsets;
+  if (base.has_value) {
+    std::vector<double> targets;
+    if (base.is_range) {
+      targets = {0.5 * (base.lower + base.upper), base.lower, base.upper};
+    } else if (base.metric == "curve_max_norm") {
+      targets = {};
+    } else {
+      const double half = base.relative_tol ? base.tolerance * std::abs(base.reference) : base.tolerance;
+      targets = {base.reference, base.reference - half, base.reference + half};
+    }
+    // offsets are added to SI data: the record is in the check's units
+    const double unit = from_si(1.0, cs.units, "audit") - from_si(0.0, cs.units, "audit");
+    for (double t : targets) {
+      for (double m : {0.999, 1.0, 1.001}) {
+        if (base.value != 0.0) factors.push_back(m * t / base.value);
+        if (unit != 0.0) offsets.push_back((m * t - base.value) / unit);
+      }
+    }
+  }
+  for (const auto& l : leaves) {
+    std::vector<double>* col = find_column(series, l);
+    if (!col) continue;
+    const std::vector<double> saved = *col;
+    for (auto& [what, p] : perturbations(saved, factors, offsets)) {
+      *col = std::move(p);
+      std::string st;
+      try {
+        st = evaluate_checks(one, series, refs).front().status;
+      } catch (const std::exception&) {
+        st.clear();
+      }
+      if (st == "INCONCLUSIVE") st = "PASS";  // the scatter band is not a verdict change
+      can_pass = can_pass || st == "PASS";
+      can_fail = can_fail || st == "FAIL";
+      if (can_pass && can_fail) break;
+    }
+    *col = saved;
+    if (can_pass && can_fail) return {};
+  }
+  if (!can_fail) return "cannot fail: no perturbation of the data it reads (scaled, shifted, reversed, spiked) makes it FAIL";
+  return "cannot pass: no perturbation of the data it reads makes it PASS";
+}
+
+}  // namespace cutbench::framework

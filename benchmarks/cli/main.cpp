@@ -616,7 +616,15 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
 // (those that differ from the solver's defaults), provenance and (--results) scalar results.
 // --check: exit 1 unless every file is current (reports/full_tier/runs must not keep runs that no
 // build of these sources uses).
-int cmd_runs(const std::string& dir, bool check, bool as_json, bool scalars) {
+int cmd_runs(const std::string& dir, bool check, bool as_json, bool scalars, bool upgrade) {
+  if (upgrade) {  // rewrite every readable run file in the current format (with its checksum)
+    for (const auto& s : scan_run_store(dir)) {
+      if (s.kind != "run" || s.key.empty() || s.state.rfind("damaged", 0) == 0 || s.state == "unreadable") continue;
+      RunOutput run;
+      const std::string path = (fs::path(dir) / s.file).string();
+      if (load_run(path, s.key, run)) save_run(path, s.key, run);
+    }
+  }
   const auto stored = scan_run_store(dir);
   json all = json::array();
   std::size_t not_current = 0;
@@ -769,7 +777,8 @@ int main(int argc, char** argv) {
   runs->add_option("dir", runs_dir, "Run-cache directory (default reports/full_tier/runs)");
   runs->add_flag("--check", runs_check, "Exit 1 unless every stored file is usable by this build");
   runs->add_flag("--json", runs_json, "JSON output");
-  bool runs_scalars = false;
+  bool runs_scalars = false, runs_upgrade = false;
+  runs->add_flag("--upgrade", runs_upgrade, "Rewrite every readable run file in the current format (with a checksum)");
   runs->add_flag("--results", runs_scalars, "Also print each stored run's scalar results");
   std::vector<std::string> runs_cases;
   std::string runs_paper, runs_tier = "full";
@@ -835,7 +844,7 @@ int main(int argc, char** argv) {
     if (*runs) {
       if (runs_cases.empty() && runs_paper.empty()) {
         if (runs_compute || !runs_series.empty()) throw InputError("--compute", "give the cases: --case C or --paper P");
-        return cmd_runs(runs_dir, runs_check, runs_json, runs_scalars);
+        return cmd_runs(runs_dir, runs_check, runs_json, runs_scalars, runs_upgrade);
       }
       if (runs_tier != "quick" && runs_tier != "full") throw InputError("--tier", "quick or full");
       set_checkpoint_interval(60.0 * checkpoint_minutes);

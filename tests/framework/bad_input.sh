@@ -41,7 +41,7 @@ expect "known_failure text too long"    "known_failure.quick" run "$bad/nairn201
 expect "no tolerance_source"            "tolerance_source" run "$bad/nairn2015/no_tolerance_source.toml"
 expect "unknown check kind"             "kind"          run "$bad/nairn2015/unknown_kind.toml"
 expect "scatter without its source"     "scatter_source" run "$bad/nairn2015/scatter_without_source.toml"
-if "$cutbench" runs --case nairn2015/fig04 --tier quick >/dev/null 2>&1; then
+if "$cutbench" runs "$root/reports/full_tier/runs" --case nairn2015/fig04 --tier quick >/dev/null 2>&1; then
   expect "MPM cfl beyond stability"     "cfl"           run "$bad/nairn2015/mpm_cfl_unstable.toml"
 fi
 expect "unknown case"         "case"             run nairn2015/fig99
@@ -60,8 +60,25 @@ if [[ "$("$cutbench" bench efg_cutting completion_guard=1.4 2>&1 >/dev/null)" ==
 else
   expect_cmd "option not a whole number" "completion_guard" bench efg_cutting completion_guard=1.4
 fi
+# A stored run with a flipped bit is reported as damaged, never read back as current.
+store=$(mktemp -d)
+cp "$root"/reports/full_tier/runs/sph_laplacian-*.run "$store"/
+f=$(ls "$store"/*.run | head -n 1)
+printf '\xff' | dd of="$f" bs=1 seek=$(( $(stat -c %s "$f") / 2 )) conv=notrunc status=none
+msg=$("$cutbench" runs "$store" --check 2>&1); rc=$?
+if [[ $rc -ne 1 || "$msg" != *"damaged: checksum mismatch"* ]]; then echo "FAIL flipped bit: exit $rc: $msg"; fail=1;
+else echo "ok   flipped bit in a stored run: reported damaged"; fi
+rm -rf "$store"
+
+# The report generator is started without a shell: a path is never interpreted.
+work=$(mktemp -d)
+( cd "$work" && "$cutbench" report --results 'x$(touch PWNED)' --out r >/dev/null 2>&1 )
+if [[ -e "$work/PWNED" ]]; then echo "FAIL shell injection through report --results"; fail=1;
+else echo "ok   report paths are not interpreted by a shell"; fi
+rm -rf "$work"
+
 # A run that faults is an ERROR: exit 3, the series and the reason named (results are written).
-if "$cutbench" runs --case nairn2015/fig04 --tier quick >/dev/null 2>&1; then
+if "$cutbench" runs "$root/reports/full_tier/runs" --case nairn2015/fig04 --tier quick >/dev/null 2>&1; then
   out=$(mktemp -d)
   msg=$("$cutbench" run "$root/tests/data/fault_cases/nairn2015/total_time_overflow.toml" --out "$out" 2>&1); rc=$?
   if [[ $rc -ne 3 ]]; then echo "FAIL fault: exit $rc (expected 3): $msg"; fail=1;

@@ -10,6 +10,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include <cerrno>
+#include <cstring>
+#include <iterator>
+#include <sstream>
+
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "cutbench/common/binary_io.hpp"
@@ -21,8 +27,31 @@ namespace cutbench::framework {
 
 namespace {
 
-// format version in the last three characters: 002 added the snapshot mesh (cells, cell fields)
-constexpr char kMagic[8] = {'C', 'B', 'R', 'U', 'N', '0', '0', '2'};
+// format version in the last three characters: 002 added the snapshot mesh (cells, cell fields);
+// 003 ends with an FNV-1a checksum of everything before it, so that a damaged file is reported
+// instead of read back (002 files, without it, are still read)
+constexpr char kMagic[8] = {'C', 'B', 'R', 'U', 'N', '0', '0', '3'};
+constexpr char kMagic002[8] = {'C', 'B', 'R', 'U', 'N', '0', '0', '2'};
+
+std::uint64_t checksum_of(const std::string& bytes, std::size_t n) { return fnv1a(bytes.substr(0, n)); }
+
+// Write all of `bytes` to `path`, flushed to the disk (fsync) before it is renamed into place.
+void write_synced(const std::string& path, const std::string& bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error("cannot write run cache file " + path);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t w = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) {
+      ::close(fd);
+      throw std::runtime_error("cannot write run cache file " + path);
+    }
+    done += static_cast<std::size_t>(w);
+  }
+  const bool synced = ::fsync(fd) == 0;
+  if (::close(fd) != 0 || !synced) throw std::runtime_error("cannot flush run cache file " + path);
+}
 
 std::string g_cache_dir;
 double g_checkpoint_interval = 600.0;
@@ -101,26 +130,31 @@ void save_run(const std::string& path, const std::string& key, const RunOutput& 
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
   static std::uint64_t counter = 0;
   const std::string tmp = path + "." + std::to_string(::getpid()) + "." + std::to_string(++counter) + ".tmp";
-  {
-    std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
-    if (!o) throw std::runtime_error("cannot write run cache file " + tmp);
-    BinaryWriter w(o);
-    o.write(kMagic, sizeof kMagic);
-    w.str(key);
-    w.u64(run.tables.size());
-    for (const auto& t : run.tables) write_table(w, t);
-    w.u64(run.snapshots.size());
-    for (const auto& sn : run.snapshots) write_snapshot(w, sn);
-    w.u64(run.scalars.size());
-    for (const auto& [name, value] : run.scalars) {
-      w.str(name);
-      w.f64(value);
-    }
-    w.units(run.scalar_units);
-    w.strings(run.notes);
-    if (!o) throw std::runtime_error("cannot write run cache file " + tmp);
+  std::ostringstream o(std::ios::binary);
+  BinaryWriter w(o);
+  o.write(kMagic, sizeof kMagic);
+  w.str(key);
+  w.u64(run.tables.size());
+  for (const auto& t : run.tables) write_table(w, t);
+  w.u64(run.snapshots.size());
+  for (const auto& sn : run.snapshots) write_snapshot(w, sn);
+  w.u64(run.scalars.size());
+  for (const auto& [name, value] : run.scalars) {
+    w.str(name);
+    w.f64(value);
   }
+  w.units(run.scalar_units);
+  w.strings(run.notes);
+  std::string bytes = o.str();
+  const std::uint64_t sum = checksum_of(bytes, bytes.size());
+  bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
   std::error_code ec;
+  try {
+    write_synced(tmp, bytes);
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
   fs::rename(tmp, target, ec);
   if (ec) {
     fs::remove(tmp, ec);
@@ -128,15 +162,28 @@ void save_run(const std::string& path, const std::string& key, const RunOutput& 
   }
 }
 
-bool load_run(const std::string& path, const std::string& key, RunOutput& run) {
+bool load_run(const std::string& path, const std::string& key, RunOutput& run, std::string* problem) {
   std::ifstream i(path, std::ios::binary);
   if (!i) return false;
+  std::string bytes((std::istreambuf_iterator<char>(i)), std::istreambuf_iterator<char>());
+  auto fail = [&](const std::string& why) {
+    if (problem) *problem = why;
+    return false;
+  };
+  if (bytes.size() < sizeof kMagic) return fail("damaged: shorter than its header");
+  const bool v3 = std::equal(kMagic, kMagic + 8, bytes.data());
+  if (!v3 && !std::equal(kMagic002, kMagic002 + 8, bytes.data())) return fail("not a run file of this format");
+  if (v3) {
+    if (bytes.size() < sizeof kMagic + 8) return fail("damaged: truncated");
+    std::uint64_t sum = 0;
+    std::memcpy(&sum, bytes.data() + bytes.size() - 8, sizeof sum);
+    bytes.resize(bytes.size() - 8);
+    if (checksum_of(bytes, bytes.size()) != sum) return fail("damaged: checksum mismatch");
+  }
+  std::istringstream in(bytes.substr(sizeof kMagic), std::ios::binary);
   try {
-    char magic[sizeof kMagic];
-    i.read(magic, sizeof magic);
-    if (!i || !std::equal(magic, magic + sizeof magic, kMagic)) return false;
-    BinaryReader r(i);
-    if (r.str() != key) return false;
+    BinaryReader r(in);
+    if (r.str() != key) return false;  // another run's file: not a problem
     RunOutput out;
     for (auto n = r.u64(); n > 0; --n) out.tables.push_back(read_table(r));
     for (auto n = r.u64(); n > 0; --n) out.snapshots.push_back(read_snapshot(r));
@@ -148,8 +195,8 @@ bool load_run(const std::string& path, const std::string& key, RunOutput& run) {
     out.notes = r.strings();
     run = std::move(out);
     return true;
-  } catch (const std::exception&) {
-    return false;
+  } catch (const std::exception& e) {
+    return fail(std::string("damaged: ") + e.what());
   }
 }
 
@@ -161,7 +208,7 @@ std::string stored_key(const std::string& path, std::string& kind) {
   std::ifstream i(path, std::ios::binary);
   char magic[8];
   if (!i.read(magic, sizeof magic)) return "";
-  if (std::equal(magic, magic + 8, kMagic)) {
+  if (std::equal(magic, magic + 8, kMagic) || std::equal(magic, magic + 8, kMagic002)) {
     kind = "run";
   } else if (std::equal(magic, magic + 8, kCheckpointMagic)) {
     kind = "checkpoint";
@@ -228,8 +275,9 @@ std::vector<StoredRun> scan_run_store(const std::string& dir) {
     }
     if (s.kind == "run") {
       RunOutput run;
-      if (!load_run(e.path().string(), s.key, run)) {
-        s.state = "unreadable";
+      std::string problem;
+      if (!load_run(e.path().string(), s.key, run, &problem)) {
+        s.state = problem.rfind("damaged", 0) == 0 ? problem : "unreadable";
       } else {
         for (const auto& n : run.notes) {
           if (n.rfind("run stored in the run cache:", 0) == 0) s.provenance = n;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <cmath>
 #include <numeric>
@@ -118,10 +119,14 @@ RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressF
   const std::string key = run_key(sv.name, params);
   const std::string cache_path = cache + "/" + run_file_name(sv.name, key);
   if (path) *path = cache_path;
-  if (load_run(cache_path, key, run)) {
+  std::string problem;
+  if (load_run(cache_path, key, run, &problem)) {
     if (progress) progress(1.0, "reused from the run cache");
     if (reused) *reused = true;
     return run;
+  }
+  if (problem.rfind("damaged", 0) == 0) {  // reported, never read back; the recomputed run replaces it
+    std::fprintf(stderr, "cutbench: stored run %s is %s: computing it again\n", cache_path.c_str(), problem.c_str());
   }
   // solvers that support checkpoints resume from, and write, <run file>.ckpt
   const CheckpointSpec ck{cache_path.substr(0, cache_path.size() - 4) + ".ckpt", key, checkpoint_interval(), false};
@@ -129,6 +134,9 @@ RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressF
   {
     CheckpointScope scope(ck);
     run = sv.run(params, progress);
+  }
+  if (!problem.empty() && problem.rfind("damaged", 0) == 0) {
+    run.notes.push_back("the stored file of this run was " + problem + "; computed again");
   }
   // provenance of a stored run, which later builds of the same solver sources may reuse
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

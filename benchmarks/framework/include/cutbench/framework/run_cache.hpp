@@ -36,10 +36,12 @@ std::string run_key(const std::string& solver, const Values& params);
 std::string params_key(const Values& params);
 std::string run_file_name(const std::string& solver, const std::string& key);
 
-// Binary round trip of a RunOutput (tables, snapshots, scalars with units, notes).
+// Binary round trip of a RunOutput (tables, snapshots, scalars with units, notes). The file ends
+// with a checksum and is flushed to the disk before it is renamed into place.
 void save_run(const std::string& path, const std::string& key, const RunOutput& run);
-// False when the file is absent, unreadable, truncated or stored under another key.
-bool load_run(const std::string& path, const std::string& key, RunOutput& run);
+// False when the file is absent, unreadable, damaged (checksum, truncation) or stored under
+// another key; `problem` (when given) says why for a damaged file ("damaged: ...").
+bool load_run(const std::string& path, const std::string& key, RunOutput& run, std::string* problem = nullptr);
 
 // One file of a run store (a run-cache directory such as reports/full_tier/runs): a finished run
 // (`.run`) or the checkpoint of an unfinished one (`.ckpt`), read without running anything.
@@ -51,7 +53,8 @@ struct StoredRun {
   std::string identity;    // the key's source identity (empty: keyed by an executable)
   Values params;           // the key's parameters
   // "current" (keyed by this build's identity of the solver), "stale" (other sources or build
-  // settings), "executable-keyed" (made before source identities), "unknown solver", "unreadable"
+  // settings), "executable-keyed" (made before source identities), "unknown solver", "unreadable",
+  // "damaged: <why>" (a checksum mismatch or truncation: never read back)
   std::string state;
   std::string provenance;  // the run's "run stored in the run cache: ..." note (runs only)
   Values scalars;          // the run's scalar results (runs only)

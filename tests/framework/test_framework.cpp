@@ -2,11 +2,15 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
 #include <set>
+#include <thread>
+
+#include <unistd.h>
 
 #include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
@@ -955,4 +959,35 @@ tolerance_source = "test"
   BOOST_TEST(out["status"].get<std::string>() == "FAIL");
   BOOST_TEST(out["unexpected_failures"].get<int>() == 1);
   BOOST_TEST(changes.size() == 3u);  // k PASS -> FAIL, gone removed, case PASS -> FAIL
+}
+
+// The lock of a shared run store: a lock of a process that no longer runs is taken over at once;
+// a live holder is waited for.
+BOOST_AUTO_TEST_CASE(run_lock_takes_over_dead_holders_and_waits_for_live_ones) {
+  const fs::path dir = fs::temp_directory_path() / "cutbench_test_lock";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string run = (dir / "toy-0000000000000001.run").string();
+  const std::string lock = (dir / "toy-0000000000000001.lock").string();
+  char host[256] = {0};
+  ::gethostname(host, sizeof host - 1);
+  std::ofstream(lock) << "999999999 " << host << "\n";  // no such process
+  {
+    const RunLock l(run, nullptr);
+    BOOST_TEST(!l.waited());
+  }
+  BOOST_TEST(!fs::exists(lock));
+  std::ofstream(lock) << ::getpid() << " " << host << "\n";  // a live holder (this process)
+  std::thread release([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+    fs::remove(lock);
+  });
+  std::string told;
+  {
+    const RunLock l(run, [&](const std::string& m) { told = m; });
+    BOOST_TEST(l.waited());
+  }
+  release.join();
+  BOOST_TEST(told.find("waiting") != std::string::npos);
+  fs::remove_all(dir);
 }

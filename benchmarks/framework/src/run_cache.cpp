@@ -12,10 +12,13 @@
 
 #include <cerrno>
 #include <cstring>
+#include <ctime>
 #include <iterator>
 #include <sstream>
 
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cutbench/common/binary_io.hpp"
@@ -199,6 +202,46 @@ bool load_run(const std::string& path, const std::string& key, RunOutput& run, s
     return fail(std::string("damaged: ") + e.what());
   }
 }
+
+RunLock::RunLock(const std::string& run_path, const std::function<void(const std::string&)>& waiting)
+    : path_(run_path.substr(0, run_path.size() - 4) + ".lock") {
+  char host[256] = {0};
+  ::gethostname(host, sizeof host - 1);
+  const std::string me = std::to_string(::getpid()) + " " + host + "\n";
+  bool told = false;
+  while (true) {
+    const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+      const bool ok = ::write(fd, me.data(), me.size()) == static_cast<ssize_t>(me.size());
+      ::close(fd);
+      if (ok) return;
+      ::unlink(path_.c_str());
+      throw std::runtime_error("cannot write lock " + path_);
+    }
+    if (errno != EEXIST) throw std::runtime_error("cannot create lock " + path_ + ": " + std::strerror(errno));
+    // held: by a live process (wait for it), or by one that died (take the lock over)
+    std::ifstream in(path_);
+    long pid = 0;
+    std::string holder_host;
+    in >> pid >> holder_host;
+    const bool same_host = holder_host == host;
+    const bool dead = in && same_host && pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+    // a lock left empty by a holder killed between creating and writing it (not one just created)
+    struct stat st {};
+    const bool empty_and_old = !in && holder_host.empty() && ::stat(path_.c_str(), &st) == 0 &&
+                               std::difftime(std::time(nullptr), st.st_mtime) > 10.0;
+    if (dead || empty_and_old) {
+      ::unlink(path_.c_str());
+      continue;
+    }
+    if (!told && waiting) waiting("computed by process " + std::to_string(pid) + " on " + holder_host + ": waiting for it");
+    told = true;
+    waited_ = true;
+    ::sleep(2);
+  }
+}
+
+RunLock::~RunLock() { ::unlink(path_.c_str()); }
 
 namespace {
 // The magic and key at the start of a run file or a checkpoint ("" when neither).

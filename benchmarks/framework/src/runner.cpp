@@ -125,6 +125,15 @@ RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressF
     if (reused) *reused = true;
     return run;
   }
+  // one process computes a run of a shared store; another waits and reads what it stored
+  const RunLock lock(cache_path, [&](const std::string& msg) {
+    if (progress) progress(0.0, msg);
+  });
+  if (lock.waited() && load_run(cache_path, key, run, &problem)) {
+    if (progress) progress(1.0, "reused from the run cache (computed by another process)");
+    if (reused) *reused = true;
+    return run;
+  }
   if (problem.rfind("damaged", 0) == 0) {  // reported, never read back; the recomputed run replaces it
     std::fprintf(stderr, "cutbench: stored run %s is %s: computing it again\n", cache_path.c_str(), problem.c_str());
   }

@@ -11,6 +11,7 @@
 // and a hash of the running executable instead. The key is stored in the file and compared on
 // load (a hash collision only costs a recompute); files are written to a per-process temporary
 // name and renamed.
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -42,6 +43,23 @@ void save_run(const std::string& path, const std::string& key, const RunOutput& 
 // False when the file is absent, unreadable, damaged (checksum, truncation) or stored under
 // another key; `problem` (when given) says why for a damaged file ("damaged: ...").
 bool load_run(const std::string& path, const std::string& key, RunOutput& run, std::string* problem = nullptr);
+
+// The lock of one run of a shared store (<run>.lock: "pid host"), held while the run is computed
+// so that two processes never compute the same run or resume each other's checkpoint. A lock of
+// a process that no longer runs on this host is taken over; a live holder is waited for (the
+// caller then reads the run it stored). Released on destruction.
+class RunLock {
+public:
+  RunLock(const std::string& run_path, const std::function<void(const std::string&)>& waiting);
+  ~RunLock();
+  RunLock(const RunLock&) = delete;
+  RunLock& operator=(const RunLock&) = delete;
+  bool waited() const { return waited_; }  // another process held it first
+
+private:
+  std::string path_;
+  bool waited_ = false;
+};
 
 // One file of a run store (a run-cache directory such as reports/full_tier/runs): a finished run
 // (`.run`) or the checkpoint of an unfinished one (`.ckpt`), read without running anything.

@@ -60,6 +60,16 @@ if [[ "$("$cutbench" bench efg_cutting completion_guard=1.4 2>&1 >/dev/null)" ==
 else
   expect_cmd "option not a whole number" "completion_guard" bench efg_cutting completion_guard=1.4
 fi
+# Resource exhaustion: nesting and size are refused before the file is parsed.
+gen=$(mktemp -d); mkdir -p "$gen/nairn2015"
+{ echo 'id = "nairn2015/deep_header"'; printf '['; for i in $(seq 1 2000); do printf 'a.'; done; echo 'b]'; } > "$gen/nairn2015/deep_header.toml"
+{ echo 'id = "nairn2015/deep_inline"'; printf 'x = '; for i in $(seq 1 500); do printf '{a = '; done; printf '1'; for i in $(seq 1 500); do printf '}'; done; echo; } > "$gen/nairn2015/deep_inline.toml"
+head -c 2000000 /dev/zero | tr '\0' '#' > "$gen/nairn2015/huge.toml"
+expect "dotted header 2000 deep"  "nested"  run "$gen/nairn2015/deep_header.toml"
+expect "inline tables 500 deep"   "nested"  run "$gen/nairn2015/deep_inline.toml"
+expect "2 MB case file"           "bytes"   run "$gen/nairn2015/huge.toml"
+rm -rf "$gen"
+
 # A stored run with a flipped bit is reported as damaged, never read back as current.
 store=$(mktemp -d)
 cp "$root"/reports/full_tier/runs/sph_laplacian-*.run "$store"/

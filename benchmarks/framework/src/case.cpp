@@ -92,6 +92,58 @@ std::string known_failure_for_tier(const json& check, const std::string& tier, c
   return text;
 }
 
+// Limits checked before a case file is parsed, so that a hostile file cannot exhaust the machine
+// (the TOML parser's cost grows with the square of a dotted key's depth).
+constexpr std::uintmax_t kMaxCaseFileBytes = 1 << 20;  // the largest case file is about 40 kB
+constexpr int kMaxKeyDepth = 8;                         // case files use at most 4 levels
+
+void require_parsable_size(const fs::path& file) {
+  std::error_code ec;
+  const auto bytes = fs::file_size(file, ec);
+  if (!ec && bytes > kMaxCaseFileBytes) {
+    throw InputError("case file", file.string() + ": " + std::to_string(bytes) + " bytes (at most " +
+                                      std::to_string(kMaxCaseFileBytes) + ")");
+  }
+  std::ifstream in(file);
+  std::string line;
+  int lineno = 0, nesting = 0;  // open { and [ of inline tables and arrays, across lines
+  while (std::getline(in, line)) {
+    ++lineno;
+    bool in_string = false;
+    const auto first_char = line.find_first_not_of(" \t");
+    const bool header = first_char != std::string::npos && line[first_char] == '[' && nesting == 0;
+    for (std::size_t k = header ? line.size() : 0; k < line.size(); ++k) {
+      const char ch = line[k];
+      if (ch == '"' && (k == 0 || line[k - 1] != '\\')) in_string = !in_string;
+      if (in_string) continue;
+      if (ch == '#') break;
+      if (ch == '{' || ch == '[') ++nesting;
+      if (ch == '}' || ch == ']') --nesting;
+      if (nesting > 2 * kMaxKeyDepth) {
+        throw InputError("case file", file.string() + ":" + std::to_string(lineno) + ": values nested more than " +
+                                          std::to_string(2 * kMaxKeyDepth) + " levels deep");
+      }
+    }
+    // the key part of a line: a table header, or what comes before '=' (quoted keys count too)
+    std::size_t end = line.find('=');
+    const auto first = line.find_first_not_of(" \t");
+    if (first != std::string::npos && line[first] == '[') end = line.find(']', first);
+    if (end == std::string::npos) end = line.size();
+    int depth = 0;
+    bool quoted = false;
+    for (std::size_t k = 0; k < end; ++k) {
+      if (line[k] == '"') quoted = !quoted;
+      if (!quoted && line[k] == '.') ++depth;
+      if (line[k] == '#' && !quoted) break;
+    }
+    if (depth > kMaxKeyDepth) {
+      throw InputError("case file", file.string() + ":" + std::to_string(lineno) + ": a key nested " +
+                                        std::to_string(depth + 1) + " levels deep (at most " +
+                                        std::to_string(kMaxKeyDepth + 1) + ")");
+    }
+  }
+}
+
 // Names that become HDF5 groups, XML attributes and file names: letters, digits and _ . + - only.
 void require_name(const std::string& name, const std::string& field) {
   if (name.empty() || name.size() > 64) throw InputError(field, "a name of 1 to 64 characters");
@@ -310,6 +362,7 @@ Inventory load_inventory(const fs::path& root, const std::string& paper) {
 
 CaseSpec load_case(const fs::path& file, const std::string& tier) {
   if (!kTiers.count(tier)) throw InputError("tier", "unknown tier '" + tier + "' (expected quick or full)");
+  require_parsable_size(file);
   toml::table tbl;
   try {
     tbl = toml::parse_file(file.string());

@@ -197,6 +197,24 @@ void write_atomic(const fs::path& path, const std::string& text) {
   fs::rename(tmp, path);
 }
 
+namespace {
+// Text for an XML attribute or element: the five markup characters as entities.
+std::string xml_escape(const std::string& text) {
+  std::string out;
+  for (const char ch : text) {
+    switch (ch) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += ch;
+    }
+  }
+  return out;
+}
+}  // namespace
+
 fs::path write_hdf5(const CaseSpec& spec, const CaseResult& result, const fs::path& out_dir) {
   const fs::path dir = out_dir / spec.paper;
   fs::create_directories(dir);
@@ -288,10 +306,11 @@ fs::path write_hdf5(const CaseSpec& spec, const CaseResult& result, const fs::pa
             }
             // XDMF grid for ParaView: polyvertex points with attributes, or the triangles with
             // node and cell attributes when the snapshot has a mesh
-            const std::string base = final_path.filename().string() + ":/series/" + s.name + "/point_" +
-                                     std::to_string(k) + "/snapshots/" + name;
+            const std::string base = xml_escape(final_path.filename().string() + ":/series/" + s.name + "/point_" +
+                                                std::to_string(k) + "/snapshots/" + name);
             const std::size_t n = snap.x.size();
-            xdmf << "      <Grid Name=\"" << s.name << "_" << k << "_" << name << "\" GridType=\"Uniform\">\n"
+            xdmf << "      <Grid Name=\"" << xml_escape(s.name + "_" + std::to_string(k) + "_" + name)
+                 << "\" GridType=\"Uniform\">\n"
                  << "        <Time Value=\"" << snap.time << "\"/>\n";
             if (nc > 0) {
               xdmf << "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << nc << "\"><DataItem Dimensions=\""
@@ -303,13 +322,13 @@ fs::path write_hdf5(const CaseSpec& spec, const CaseResult& result, const fs::pa
             xdmf << "        <Geometry GeometryType=\"XY\"><DataItem Dimensions=\"" << n
                  << " 2\" Format=\"HDF\" NumberType=\"Float\" Precision=\"8\">" << base << "/xy</DataItem></Geometry>\n";
             for (const auto& f : snap.order) {
-              xdmf << "        <Attribute Name=\"" << f << "\" Center=\"Node\"><DataItem Dimensions=\"" << n
-                   << "\" Format=\"HDF\" NumberType=\"Float\" Precision=\"8\">" << base << "/" << f
+              xdmf << "        <Attribute Name=\"" << xml_escape(f) << "\" Center=\"Node\"><DataItem Dimensions=\"" << n
+                   << "\" Format=\"HDF\" NumberType=\"Float\" Precision=\"8\">" << base << "/" << xml_escape(f)
                    << "</DataItem></Attribute>\n";
             }
             for (const auto& f : snap.cell_order) {
-              xdmf << "        <Attribute Name=\"" << f << "\" Center=\"Cell\"><DataItem Dimensions=\"" << nc
-                   << "\" Format=\"HDF\" NumberType=\"Float\" Precision=\"8\">" << base << "/cell_fields/" << f
+              xdmf << "        <Attribute Name=\"" << xml_escape(f) << "\" Center=\"Cell\"><DataItem Dimensions=\"" << nc
+                   << "\" Format=\"HDF\" NumberType=\"Float\" Precision=\"8\">" << base << "/cell_fields/" << xml_escape(f)
                    << "</DataItem></Attribute>\n";
             }
             xdmf << "      </Grid>\n";

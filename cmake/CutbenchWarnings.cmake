@@ -11,7 +11,11 @@ endif()
 # cutbench::sanitize — ASan + UBSan when CUTBENCH_SANITIZE is on.
 add_library(cutbench_sanitize INTERFACE)
 add_library(cutbench::sanitize ALIAS cutbench_sanitize)
-if(CUTBENCH_SANITIZE)
+if(CUTBENCH_FUZZ)  # every library instrumented for coverage; the harnesses link libFuzzer
+  target_compile_options(cutbench_sanitize INTERFACE
+    -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  target_link_options(cutbench_sanitize INTERFACE -fsanitize=address,undefined)
+elseif(CUTBENCH_SANITIZE)
   target_compile_options(cutbench_sanitize INTERFACE
     -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   target_link_options(cutbench_sanitize INTERFACE -fsanitize=address,undefined)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install every Debian package that cutbench's build, tests and report need.
 # Idempotent; run as root (or with sudo) on a fresh Debian 12 machine.
-#   scripts/setup-debian.sh            build + tests + report
+#   scripts/setup-debian.sh            build + tests + report (clang: the libFuzzer harnesses)
 #   scripts/setup-debian.sh --browser  also Chromium (for report screenshots)
 set -euo pipefail
 
@@ -10,6 +10,7 @@ packages=(
   libeigen3-dev libgsl-dev libboost-test-dev libhdf5-dev
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libsuitesparse-dev
   python3 python3-numpy python3-matplotlib python3-h5py
+  clang libclang-rt-14-dev libomp-14-dev
 )
 if [[ "${1:-}" == "--browser" ]]; then packages+=(chromium); fi
 

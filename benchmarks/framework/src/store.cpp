@@ -173,7 +173,7 @@ json refresh_record(const json& rec, const CaseSpec& spec, std::vector<std::stri
     records.push_back(r);
   }
   for (const auto& [key, ch] : old) {
-    if (std::none_of(spec.checks.begin(), spec.checks.end(), [&](const CheckSpec& c) { return c.key == key; })) {
+    if (std::none_of(spec.checks.begin(), spec.checks.end(), [&key = key](const CheckSpec& c) { return c.key == key; })) {
       dropped.push_back(key);
       if (changes) changes->push_back(key + ": removed from the case file");
     }

@@ -82,7 +82,7 @@ Values validate_params(const ModelSpec& spec, const Values& given) {
   Values out;
   for (const auto& [name, value] : given) {
     auto it = std::find_if(spec.params.begin(), spec.params.end(),
-                           [&](const ParamSpec& p) { return p.name == name; });
+                           [&name = name](const ParamSpec& p) { return p.name == name; });
     if (it == spec.params.end()) {
       std::string known;
       for (const auto& p : spec.params) known += (known.empty() ? "" : ", ") + p.name;

@@ -116,12 +116,16 @@ std::vector<std::pair<std::string, std::vector<double>>> perturbations(const std
   if (y.size() > 1) {
     std::vector<double> p(y.rbegin(), y.rend());
     out.emplace_back("reversed", std::move(p));
-    std::vector<double> q = y;  // a single spike at each end in turn
-    q.front() += 10.0 * span;
-    out.emplace_back("spike first", q);
-    q = y;
-    q.back() += 10.0 * span;
-    out.emplace_back("spike last", std::move(q));
+    // a spike and a dip at each point in turn (at most 64 of them, spread over the column): moves a
+    // maximum, a minimum or a drop to any place, as a different computed curve would
+    const std::size_t step = std::max<std::size_t>(1, y.size() / 64);
+    for (std::size_t k = 0; k < y.size(); k += step) {
+      for (const double sign : {1.0, -1.0}) {
+        std::vector<double> q = y;
+        q[k] += sign * 10.0 * span;
+        out.emplace_back(sign > 0 ? "spike" : "dip", std::move(q));
+      }
+    }
   }
   return out;
 }
@@ -210,7 +214,10 @@ std::string audit_check(const CaseSpec& spec, const CheckSpec& cs, const CheckRe
     *col = saved;
     if (can_pass && can_fail) return {};
   }
-  if (!can_fail) return "cannot fail: no perturbation of the data it reads (scaled, shifted, reversed, spiked) makes it FAIL";
+  if (!can_fail) {
+    return "cannot fail: no perturbation of the data it reads (scaled, shifted, reversed, a spike or dip at any point) "
+           "makes it FAIL";
+  }
   return "cannot pass: no perturbation of the data it reads makes it PASS";
 }
 

@@ -14,10 +14,10 @@ namespace cutbench::framework {
 // reading an input that its series varies. Empty when none applies.
 std::string audit_static(const CaseSpec& spec, const CheckSpec& cs);
 
-// audit_static, then: perturb each column the value reads (scaled, shifted, reversed, spiked; the
-// reference is re-evaluated on the same perturbed data) and re-evaluate. Returns why the verdict
-// cannot change ("cannot fail: ..." / "cannot pass: ...") or empty when it can. `series` is
-// restored on return.
+// audit_static, then: perturb each column the value reads (scaled, shifted, reversed, a spike or a
+// dip at any point; the reference is re-evaluated on the same perturbed data) and re-evaluate.
+// Returns why the verdict cannot change ("cannot fail: ..." / "cannot pass: ...") or empty when it
+// can. `series` is restored on return.
 std::string audit_check(const CaseSpec& spec, const CheckSpec& cs, const CheckRecord& base,
                         std::vector<SeriesResult>& series, ReferenceCache& refs);
 

@@ -15,10 +15,10 @@ if(CUTBENCH_FUZZ)  # every library instrumented for coverage; the harnesses link
   target_compile_options(cutbench_sanitize INTERFACE
     -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   target_link_options(cutbench_sanitize INTERFACE -fsanitize=address,undefined)
-elseif(CUTBENCH_SANITIZE)
+elseif(CUTBENCH_SANITIZE)  # float-cast-overflow is not part of GCC's `undefined`
   target_compile_options(cutbench_sanitize INTERFACE
-    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
-  target_link_options(cutbench_sanitize INTERFACE -fsanitize=address,undefined)
+    -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(cutbench_sanitize INTERFACE -fsanitize=address,undefined,float-cast-overflow)
 endif()
 
 # Helper: one library target per component with a namespaced alias.

@@ -63,18 +63,6 @@ std::vector<double>* find_column(std::vector<SeriesResult>& series, const Leaf& 
   return nullptr;
 }
 
-// The parameters a series varies or fixes: a value reading one of them echoes an input.
-std::set<std::string> series_inputs(const SeriesSpec& s) {
-  std::set<std::string> in;
-  if (s.sweep) {
-    in.insert(s.sweep->param);
-    for (const auto& [k, v] : s.zip) in.insert(k);
-  }
-  if (s.rows) {
-    for (const auto& [k, v] : s.rows->params) in.insert(k);
-  }
-  return in;
-}
 
 // The perturbations applied to one column, each a function of the column.
 std::vector<std::pair<std::string, std::vector<double>>> perturbations(const std::vector<double>& y,
@@ -151,7 +139,8 @@ std::string audit_static(const CaseSpec& spec, const CheckSpec& cs) {
   for (const auto& l : leaves) {
     if (l.run >= 0) continue;
     for (const auto& s : spec.series) {
-      if (s.name == l.series && series_inputs(s).count(l.column)) {
+      const auto inputs = varied_params(s);
+      if (s.name == l.series && std::find(inputs.begin(), inputs.end(), l.column) != inputs.end()) {
         return "input echo: '" + l.column + "' is an input varied by series '" + s.name + "'";
       }
     }

@@ -296,6 +296,17 @@ std::vector<std::string> finding_ids(const fs::path& root, const std::string& pa
   return ids;
 }
 
+std::vector<std::string> varied_params(const SeriesSpec& s) {
+  std::vector<std::string> names;
+  if (s.sweep) {
+    names.push_back(s.sweep->param);
+    for (const auto& [k, v] : s.zip) names.push_back(k);
+  } else if (s.rows) {
+    for (const auto& [k, v] : s.rows->params) names.push_back(k);
+  }
+  return names;
+}
+
 std::vector<fs::path> discover_case_files(const fs::path& root) {
   std::vector<fs::path> files;
   for (const auto& paper : kPaperIds) {

@@ -173,16 +173,6 @@ const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::str
   return nullptr;
 }
 
-std::vector<std::string> varied_params(const SeriesSpec& s) {
-  std::vector<std::string> names;
-  if (s.sweep) {
-    names.push_back(s.sweep->param);
-    for (const auto& [k, v] : s.zip) names.push_back(k);
-  } else if (s.rows) {
-    for (const auto& [k, v] : s.rows->params) names.push_back(k);
-  }
-  return names;
-}
 
 // A solver run whose histories hold a non-finite value has faulted (a blow-up the solver's own
 // guards missed): the series is an ERROR, never a source of NOT RUN checks. (A NaN scalar is a

@@ -81,6 +81,10 @@ class ReferenceCache;
 // The points of a series: each a full parameter set (SI) for one evaluation or solver run.
 std::vector<Values> series_points(const SeriesSpec& s, ReferenceCache& refs);
 
+// The parameters a series varies from point to point: the swept one and those zipped with it, or
+// those read from the rows of a table.
+std::vector<std::string> varied_params(const SeriesSpec& s);
+
 // Root of the source tree (benchmarks/, reference_data/): $CUTBENCH_ROOT, else the build-time path.
 std::filesystem::path source_root();
 

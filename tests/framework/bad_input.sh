@@ -70,6 +70,16 @@ expect "inline tables 500 deep"   "nested"  run "$gen/nairn2015/deep_inline.toml
 expect "2 MB case file"           "bytes"   run "$gen/nairn2015/huge.toml"
 rm -rf "$gen"
 
+# Temporaries left by killed runs (no such process) are removed at the next run; others are kept.
+left=$(mktemp -d); mkdir -p "$left/aghababaei2021"
+touch "$left/aghababaei2021/fig04.h5.tmp.999999999" "$left/aghababaei2021/fig04.run.999999998.2.tmp" \
+      "$left/aghababaei2021/fig04.json.tmp.1"
+"$cutbench" run aghababaei2021/fig04 --out "$left" >/dev/null 2>&1
+if [[ -e "$left/aghababaei2021/fig04.h5.tmp.999999999" || -e "$left/aghababaei2021/fig04.run.999999998.2.tmp" ||
+      ! -e "$left/aghababaei2021/fig04.json.tmp.1" ]]; then echo "FAIL stale temporaries: $(ls "$left/aghababaei2021")"; fail=1;
+else echo "ok   temporaries of dead writers removed, of live ones kept"; fi
+rm -rf "$left"
+
 # A stored run with a flipped bit is reported as damaged, never read back as current.
 store=$(mktemp -d)
 cp "$root"/reports/full_tier/runs/sph_laplacian-*.run "$store"/

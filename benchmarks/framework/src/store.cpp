@@ -1,10 +1,10 @@
 #include "cutbench/framework/store.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 
 #include "cutbench/common/errors.hpp"
@@ -46,8 +46,30 @@ void require_output_dir(const fs::path& dir, const std::string& field) {
   ::rmdir(probe.c_str());
 }
 
+namespace {
+// The writer's pid in a temporary file name: "<name>.tmp.<pid>" (results) or
+// "<name>.<pid>[.<n>].tmp" (run files, checkpoints); -1 for any other name.
+long temporary_writer(const std::string& name) {
+  auto digits = [](const std::string& t) {
+    return !t.empty() && t.size() < 12 && std::all_of(t.begin(), t.end(), [](unsigned char c) { return std::isdigit(c); });
+  };
+  const auto tmp = name.rfind(".tmp.");
+  if (tmp != std::string::npos && digits(name.substr(tmp + 5))) return std::stol(name.substr(tmp + 5));
+  if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) {
+    std::string rest = name.substr(0, name.size() - 4);  // "<name>.<pid>" or "<name>.<pid>.<n>"
+    auto dot = rest.rfind('.');
+    if (dot == std::string::npos || !digits(rest.substr(dot + 1))) return -1;
+    const std::string last = rest.substr(dot + 1);
+    rest.resize(dot);
+    dot = rest.rfind('.');
+    if (dot != std::string::npos && digits(rest.substr(dot + 1))) return std::stol(rest.substr(dot + 1));
+    return std::stol(last);
+  }
+  return -1;
+}
+}  // namespace
+
 std::size_t remove_stale_temporaries(const fs::path& dir) {
-  static const std::regex tmp_name(R"(.*\.tmp\.([0-9]+)$|.*\.([0-9]+)(\.[0-9]+)?\.tmp$)");
   std::size_t removed = 0;
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return 0;
@@ -55,11 +77,8 @@ std::size_t remove_stale_temporaries(const fs::path& dir) {
        it.increment(ec)) {
     if (it.depth() > 2) it.disable_recursion_pending();
     if (!it->is_regular_file(ec)) continue;
-    std::smatch m;
-    const std::string name = it->path().filename().string();
-    if (!std::regex_match(name, m, tmp_name)) continue;
-    const long pid = std::stol(m[1].matched ? m[1].str() : m[2].str());
-    if (pid == static_cast<long>(::getpid())) continue;
+    const long pid = temporary_writer(it->path().filename().string());
+    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
     if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // its writer may be alive
     if (fs::remove(it->path(), ec)) ++removed;
   }

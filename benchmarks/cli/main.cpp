@@ -1,10 +1,9 @@
-// cutbench — the command line: list, run, eval, bench, report, runs.
+// cutbench — the command line: list, run, eval, bench, report, runs, records, audit.
 // Exit codes: 0 all pass, 1 a check failed (or an internal error), 2 bad input (nothing written),
 // 3 a run faulted (ERROR: a series threw, a non-finite solver output, a blow-up guard).
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -93,7 +92,7 @@ private:
 };
 
 // A verdict as one word for the table: "FAIL (known)" when every failing check is documented for
-// that tier, "+ stale" when a record was made by other solver sources than this build's.
+// that tier, and " stale" appended when a record was made by other solver sources than this build's.
 std::string verdict_word(const json& v) {
   std::string s = v.value("status", std::string("NOT RUN"));
   if (s == "FAIL" && v.value("unexpected_failures", 1) == 0) s = "FAIL (known)";

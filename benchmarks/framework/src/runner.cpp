@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <cmath>
 #include <numeric>
 
 #ifdef _OPENMP
@@ -173,11 +173,10 @@ const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::str
   return nullptr;
 }
 
-
 // A solver run whose histories hold a non-finite value has faulted (a blow-up the solver's own
 // guards missed): the series is an ERROR, never a source of NOT RUN checks. (A NaN scalar is a
-// quantity the run does not define, e.g. mu_sticking without a sticking zone: checks on it are
-// NOT RUN with that reason.)
+// quantity the run does not define, e.g. mu_sticking without a sticking zone: a check reading it
+// FAILs with that reason.)
 void require_finite(const RunOutput& run, const std::string& where) {
   for (const auto& t : run.tables) {
     for (const auto& [name, col] : t.columns) {

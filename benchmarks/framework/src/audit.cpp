@@ -65,10 +65,10 @@ std::vector<double>* find_column(std::vector<SeriesResult>& series, const Leaf& 
 
 
 // The perturbations applied to one column, each a function of the column.
-std::vector<std::pair<std::string, std::vector<double>>> perturbations(const std::vector<double>& y,
-                                                                       const std::vector<double>& factors,
-                                                                       const std::vector<double>& offsets) {
-  std::vector<std::pair<std::string, std::vector<double>>> out;
+std::vector<std::vector<double>> perturbations(const std::vector<double>& y,
+                                               const std::vector<double>& factors,
+                                               const std::vector<double>& offsets) {
+  std::vector<std::vector<double>> out;
   double lo = INFINITY, hi = -INFINITY, mean = 0.0;
   std::size_t n = 0;
   for (double v : y) {
@@ -87,23 +87,23 @@ std::vector<std::pair<std::string, std::vector<double>>> perturbations(const std
   for (double k : ks) {
     std::vector<double> p = y;
     for (auto& v : p) v *= k;
-    out.emplace_back("scaled by " + std::to_string(k), std::move(p));
+    out.push_back(std::move(p));
   }
   const double span = std::max({std::abs(mean), hi - lo, 1e-30});
   for (double d : {-10.0, -1.0, -0.1, 0.1, 1.0, 10.0}) {
     std::vector<double> p = y;
     for (auto& v : p) v += d * span;
-    out.emplace_back("shifted", std::move(p));
+    out.push_back(std::move(p));
   }
   for (double d : offsets) {  // in the check's units: right for an unscaled value, a guess otherwise
     if (!std::isfinite(d)) continue;
     std::vector<double> p = y;
     for (auto& v : p) v += d;
-    out.emplace_back("offset", std::move(p));
+    out.push_back(std::move(p));
   }
   if (y.size() > 1) {
     std::vector<double> p(y.rbegin(), y.rend());
-    out.emplace_back("reversed", std::move(p));
+    out.push_back(std::move(p));
     // a spike and a dip at each point in turn (at most 64 of them, spread over the column): moves a
     // maximum, a minimum or a drop to any place, as a different computed curve would
     const std::size_t step = std::max<std::size_t>(1, y.size() / 64);
@@ -111,7 +111,7 @@ std::vector<std::pair<std::string, std::vector<double>>> perturbations(const std
       for (const double sign : {1.0, -1.0}) {
         std::vector<double> q = y;
         q[k] += sign * 10.0 * span;
-        out.emplace_back(sign > 0 ? "spike" : "dip", std::move(q));
+        out.push_back(std::move(q));
       }
     }
   }
@@ -187,7 +187,7 @@ std::string audit_check(const CaseSpec& spec, const CheckSpec& cs, const CheckRe
     std::vector<double>* col = find_column(series, l);
     if (!col) continue;
     const std::vector<double> saved = *col;
-    for (auto& [what, p] : perturbations(saved, factors, offsets)) {
+    for (auto& p : perturbations(saved, factors, offsets)) {
       *col = std::move(p);
       std::string st;
       try {

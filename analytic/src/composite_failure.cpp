@@ -246,4 +246,9 @@ EnvelopePoint failure_envelope_point(Criterion c, EnvelopePlane plane, double th
   return p;
 }
 
+ParamSpec criterion_param(const std::string& default_option) {
+  return option_param("criterion", "failure criterion",
+                      {{"max_stress", "maximum stress"}, {"hashin", "Hashin"}, {"larc02", "LaRC02"}}, default_option);
+}
+
 }  // namespace cutbench::analytic

@@ -560,30 +560,34 @@ ModelSpec envelope_model() {
   ModelSpec m;
   m.name = "failure_envelope";
   m.description =
-      "Failure envelope point: distance along a ray in the s11-s22 (plane 0, tau12 fixed) or s22-tau12 "
-      "(plane 1, s11 fixed) plane to the first point with index 1 (bracket scan + GSL Brent)";
+      "Failure envelope point: distance along a ray in the s11-s22 (plane s11_s22, tau12 fixed) or s22-tau12 "
+      "(plane s22_tau12, s11 fixed) plane to the first point with index 1 (bracket scan + GSL Brent)";
   m.source = "Kahwash et al. 2018 Fig. 3 and Appendix A";
-  m.params = {ranged("criterion", Dim::dimensionless, "0 maximum stress, 1 Hashin, 2 LaRC02", 0.0, true, 2.0, true),
-              ranged("plane", Dim::dimensionless, "0: s11-s22 plane, 1: s22-tau12 plane", 0.0, true, 1.0, true),
+  ParamSpec criterion = criterion_param("max_stress");
+  criterion.default_value.reset();  // required
+  ParamSpec plane_spec = option_param("plane", "the stress plane of the envelope",
+                                 {{"s11_s22", "sigma11-sigma22 plane, tau12 fixed"},
+                                  {"s22_tau12", "sigma22-tau12 plane, sigma11 fixed"}},
+                                 "s11_s22");
+  plane_spec.default_value.reset();  // required
+  m.params = {criterion, plane_spec,
               any("theta", Dim::angle, "direction of the ray from the s1 axis", 0.0),
-              any("fixed", Dim::stress, "the third stress: tau12 (plane 0) or sigma11 (plane 1)", 0.0)};
+              any("fixed", Dim::stress, "the third stress: tau12 (plane s11_s22) or sigma11 (plane s22_tau12)", 0.0)};
   auto s = strength_params(true);
   m.params.insert(m.params.end(), s.begin(), s.end());
   auto l = larc_params(kNaN);
   m.params.insert(m.params.end(), l.begin(), l.end());
   m.outputs = {out("radius", Dim::stress, "distance to the failure surface along the ray"),
-               out("s1", Dim::stress, "sigma11 (plane 0) or sigma22 (plane 1) at failure"),
-               out("s2", Dim::stress, "sigma22 (plane 0) or tau12 (plane 1) at failure"),
+               out("s1", Dim::stress, "sigma11 (plane s11_s22) or sigma22 (plane s22_tau12) at failure"),
+               out("s2", Dim::stress, "sigma22 (plane s11_s22) or tau12 (plane s22_tau12) at failure"),
                out("mode", Dim::dimensionless, "governing mode at the envelope point (codes as failure_*)")};
   m.evaluate = [](const Values& v) {
-    const double cv = v.at("criterion"), pv = v.at("plane");
-    if (cv != std::floor(cv)) throw InputError("criterion", "must be 0, 1 or 2");
-    if (pv != std::floor(pv)) throw InputError("plane", "must be 0 or 1");
+    const double cv = v.at("criterion"), pv = v.at("plane");  // validated option indices
     const auto c = static_cast<Criterion>(static_cast<int>(cv));
     const auto plane = static_cast<EnvelopePlane>(static_cast<int>(pv));
     if (c == Criterion::larc02) {
       for (const char* name : {"E1", "G12", "nu12"}) {
-        if (!given(v, name)) throw InputError(name, "required for criterion 2 (LaRC02)");
+        if (!given(v, name)) throw InputError(name, "required for criterion \"larc02\"");
       }
     }
     Lamina lam = lamina_from(v);

@@ -60,7 +60,7 @@ Values parse_assignments(const std::vector<std::string>& args, const std::vector
       throw InputError(key, "unknown parameter of '" + owner + "' (known: " + known + ")");
     }
     if (v.count(key)) throw InputError(key, "given twice");
-    v[key] = parse_quantity(a.substr(eq + 1), p->dim, key);
+    v[key] = parse_param_value(*p, a.substr(eq + 1), key);
   }
   return v;
 }
@@ -329,48 +329,139 @@ int cmd_records(const std::string& paper, bool refresh) {
   return 0;
 }
 
+json param_json(const ParamSpec& p) {
+  json pj = {{"name", p.name}, {"kind", kind_name(p.kind)}, {"unit", si_unit(p.dim)}, {"description", p.description},
+             {"range", describe_range(p)}};
+  if (!p.default_value) {
+    pj["default"] = nullptr;
+  } else if (std::isnan(*p.default_value)) {
+    pj["default"] = "unset";
+  } else if (p.kind == ParamKind::option) {
+    pj["default"] = format_param_value(p, *p.default_value);
+  } else if (p.kind == ParamKind::boolean) {
+    pj["default"] = *p.default_value == 1.0;
+  } else {
+    pj["default"] = *p.default_value;
+  }
+  for (const auto& o : p.options) pj["options"].push_back({{"name", o.name}, {"description", o.description}});
+  return pj;
+}
+
+json outputs_json(const std::vector<OutputSpec>& outputs) {
+  json out = json::array();
+  for (const auto& o : outputs) out.push_back({{"name", o.name}, {"unit", si_unit(o.dim)}, {"description", o.description}});
+  return out;
+}
+
+json describe_json(const ModelSpec& m) {
+  json j = {{"name", m.name}, {"type", "model"}, {"description", m.description}, {"source", m.source},
+            {"params", json::array()}};
+  for (const auto& p : m.params) j["params"].push_back(param_json(p));
+  j["outputs"] = outputs_json(m.outputs);
+  return j;
+}
+
+json describe_json(const SolverSpec& sv) {
+  json j = {{"name", sv.name}, {"type", "solver"}, {"method", solver_method(sv.name)}, {"description", sv.description},
+            {"source", sv.source}, {"params", json::array()}};
+  for (const auto& p : sv.params) j["params"].push_back(param_json(p));
+  j["outputs"] = outputs_json(sv.scalars);
+  j["tables"] = json::array();
+  for (const auto& t : sv.tables) {
+    json tj = {{"name", t.name}, {"description", t.description}, {"columns", json::array()}};
+    for (const auto& c : t.columns) tj["columns"].push_back({{"name", c.name}, {"unit", c.unit}, {"description", c.description}});
+    j["tables"].push_back(tj);
+  }
+  return j;
+}
+
+void print_described(const json& j) {
+  std::cout << j["name"].get<std::string>() << " (" << j["type"].get<std::string>() << ") — "
+            << j["description"].get<std::string>() << "\n  source: " << j["source"].get<std::string>() << "\n  params:\n";
+  for (const auto& p : j["params"]) {
+    std::cout << "    " << std::left << std::setw(24) << p["name"].get<std::string>() << ' ' << std::setw(8)
+              << p["kind"].get<std::string>() << std::setw(8) << p["unit"].get<std::string>()
+              << p["description"].get<std::string>() << "; " << p["range"].get<std::string>();
+    if (p["default"].is_null()) {
+      std::cout << "; required";
+    } else {
+      std::cout << "; default ";
+      if (p["default"].is_string()) {
+        std::cout << p["default"].get<std::string>();
+      } else if (p["default"].is_number() && p["unit"] == "rad") {
+        std::cout << fmt(p["default"].get<double>() * 180.0 / M_PI) << " deg";
+      } else if (p["default"].is_number()) {
+        std::cout << fmt(p["default"].get<double>());
+      } else {
+        std::cout << p["default"].dump();
+      }
+    }
+    std::cout << "\n";
+    if (p.contains("options")) {
+      for (const auto& o : p["options"]) {
+        std::cout << "        \"" << o["name"].get<std::string>() << "\": " << o["description"].get<std::string>() << "\n";
+      }
+    }
+  }
+  std::cout << "  outputs:\n";
+  for (const auto& o : j["outputs"]) {
+    std::cout << "    " << std::left << std::setw(22) << o["name"].get<std::string>() << std::setw(8)
+              << o["unit"].get<std::string>() << o["description"].get<std::string>() << "\n";
+  }
+  if (j.contains("tables")) {
+    for (const auto& t : j["tables"]) {
+      std::cout << "  table " << t["name"].get<std::string>() << ": " << t["description"].get<std::string>() << "\n";
+      for (const auto& c : t["columns"]) {
+        std::cout << "    " << std::left << std::setw(22) << c["name"].get<std::string>() << std::setw(8)
+                  << c["unit"].get<std::string>() << c["description"].get<std::string>() << "\n";
+      }
+    }
+  }
+}
+
 int cmd_eval_list(bool as_json) {
   json all = json::array();
-  for (const auto& m : ModelRegistry::instance().all()) {
-    json j = {{"model", m.name}, {"description", m.description}, {"source", m.source}};
-    for (const auto& p : m.params) {
-      json pj = {{"name", p.name}, {"unit", si_unit(p.dim)}, {"description", p.description},
-                 {"range", describe_range(p)}};
-      if (p.default_value) {
-        pj["default"] = std::isfinite(*p.default_value) ? json(*p.default_value) : json("unset");
-      } else {
-        pj["default"] = nullptr;
-      }
-      j["params"].push_back(pj);
-    }
-    for (const auto& o : m.outputs) {
-      j["outputs"].push_back({{"name", o.name}, {"unit", si_unit(o.dim)}, {"description", o.description}});
-    }
-    all.push_back(j);
-  }
+  for (const auto& m : ModelRegistry::instance().all()) all.push_back(describe_json(m));
   if (as_json) {
     std::cout << all.dump(2) << "\n";
     return 0;
   }
-  for (const auto& j : all) {
-    std::cout << j["model"].get<std::string>() << " — " << j["description"].get<std::string>() << "\n"
-              << "  source: " << j["source"].get<std::string>() << "\n  params:\n";
-    for (const auto& p : j["params"]) {
-      std::cout << "    " << std::left << std::setw(12) << p["name"].get<std::string>() << std::setw(10)
-                << p["unit"].get<std::string>() << p["description"].get<std::string>() << "; "
-                << p["range"].get<std::string>();
-      if (p["default"].is_null()) {
-        std::cout << "; required";
-      } else {
-        std::cout << "; default " << p["default"].dump();
-      }
-      std::cout << "\n";
+  for (const auto& j : all) print_described(j);
+  return 0;
+}
+
+// `cutbench describe [NAME]`: one model or solver in full, or the list of every one.
+int cmd_describe(const std::string& name, bool as_json) {
+  if (name.empty()) {
+    json all = json::array();
+    for (const auto& m : ModelRegistry::instance().all()) {
+      all.push_back({{"name", m.name}, {"type", "model"}, {"description", m.description}});
     }
-    std::cout << "  outputs:\n";
-    for (const auto& o : j["outputs"]) {
-      std::cout << "    " << std::left << std::setw(16) << o["name"].get<std::string>() << std::setw(10)
-                << o["unit"].get<std::string>() << o["description"].get<std::string>() << "\n";
+    for (const auto& sv : SolverRegistry::instance().all()) {
+      all.push_back({{"name", sv.name}, {"type", "solver"}, {"method", solver_method(sv.name)}, {"description", sv.description}});
     }
+    if (as_json) {
+      std::cout << all.dump(2) << "\n";
+      return 0;
+    }
+    for (const auto& j : all) {
+      std::cout << std::left << std::setw(28) << j["name"].get<std::string>() << std::setw(8)
+                << j["type"].get<std::string>() << j["description"].get<std::string>() << "\n";
+    }
+    return 0;
+  }
+  json j;
+  if (const auto* m = ModelRegistry::instance().find(name)) {
+    j = describe_json(*m);
+  } else if (const auto* sv = SolverRegistry::instance().find(name)) {
+    j = describe_json(*sv);
+  } else {
+    throw InputError("name", "no model or solver '" + name + "' in this build (see `cutbench describe`)");
+  }
+  if (as_json) {
+    std::cout << j.dump(2) << "\n";
+  } else {
+    print_described(j);
   }
   return 0;
 }
@@ -755,6 +846,13 @@ int main(int argc, char** argv) {
   eval->add_flag("--json", eval_json, "JSON output");
   eval->add_flag("--list", eval_list, "List every model with its parameters");
 
+  std::string describe_name;
+  bool describe_json_out = false;
+  auto* describe = app.add_subcommand("describe", "Parameters (kinds, ranges, defaults, options), outputs and tables of "
+                                                  "a model or solver; without a name, the list of all");
+  describe->add_option("name", describe_name, "Model or solver name");
+  describe->add_flag("--json", describe_json_out, "JSON output");
+
   std::string bench_name, bench_out = "results";
   std::vector<std::string> bench_args;
   int bench_repeat = 1;
@@ -836,6 +934,7 @@ int main(int argc, char** argv) {
       if (eval_model.empty()) throw InputError("model", "give a model name (see `cutbench eval --list`)");
       return cmd_eval(eval_model, eval_args, eval_json);
     }
+    if (*describe) return cmd_describe(describe_name, describe_json_out);
     if (*bench) return cmd_bench(bench_name, bench_args, bench_repeat, bench_out, bench_state);
     if (*report) return cmd_report(report_results, report_out);
     if (*records) return cmd_records(records_paper, records_refresh);

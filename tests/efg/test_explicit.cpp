@@ -8,14 +8,10 @@
 
 #include "cutbench/efg/explicit.hpp"
 #include "cutbench/efg/static.hpp"
-#include "cutbench/common/solver.hpp"
+#include "cutbench/efg/register.hpp"
 #include "cutbench/efg/verification.hpp"
 
 using namespace cutbench::efg;
-
-namespace cutbench::efg {
-void register_solvers(SolverRegistry& registry);
-}
 
 namespace {
 const double kPi = std::acos(-1.0);

@@ -60,6 +60,82 @@ if [[ "$("$cutbench" bench efg_cutting completion_guard=1.4 2>&1 >/dev/null)" ==
 else
   expect_cmd "option not a whole number" "completion_guard" bench efg_cutting completion_guard=1.4
 fi
+# Typed parameters: integers are whole numbers, switches true/false, options one of their names;
+# all refused at load, before anything runs.
+typed=$(mktemp -d)
+typed_case() {  # typed_case <paper> <name> <solver> <model> <params inline table> [extra series lines]
+  mkdir -p "$typed/$1"
+  printf 'id = "%s/%s"\npaper = "%s"\nitem = "Bad"\ntitle = "bad input"\nrequirement = "must be rejected"\nstatus = "implemented"\nsolver = "%s"\nmodels = ["%s"]\ntiers = ["quick"]\n\n[[series]]\nname = "s"\nmodel = "%s"\nparams = %s\n%s\n' \
+    "$1" "$2" "$1" "$3" "$4" "$4" "$5" "${6:-}" > "$typed/$1/$2.toml"
+  echo "$typed/$1/$2.toml"
+}
+if "$cutbench" describe mpm_cutting >/dev/null 2>&1; then
+  expect "integer given a fraction"    "snapshots"        run "$(typed_case nairn2015 snap mpm mpm_cutting '{ snapshots = 1.5 }')"
+  expect "order given a fraction"      "position_order"   run "$(typed_case nairn2015 order mpm mpm_cutting '{ position_order = 1.5 }')"
+  expect "option given its old code"   "strain_update"    run "$(typed_case nairn2015 code mpm mpm_cutting '{ strain_update = 1 }')"
+  expect "option given an unknown name" "strain_update"   run "$(typed_case nairn2015 name mpm mpm_cutting '{ strain_update = "usf" }')"
+  expect "switch given a fraction"     "musl_recontact"   run "$(typed_case nairn2015 sw mpm mpm_cutting '{ musl_recontact = 0.5 }')"
+  expect "switch given a string"       "musl_recontact"   run "$(typed_case nairn2015 sws mpm mpm_cutting '{ musl_recontact = "yes" }')"
+  expect "count given as a string"     "particles_through_chip" run "$(typed_case nairn2015 cnt mpm mpm_cutting '{ particles_through_chip = "4.5" }')"
+  expect "option swept by from/to"     "sweep"            run "$(typed_case nairn2015 swp mpm mpm_cutting '{ h = "1 mm" }' 'sweep = { param = "contact_detection", from = 0, to = 2, n = 3 }')"
+  expect "option swept by a bad name"  "sweep.values"     run "$(typed_case nairn2015 swv mpm mpm_cutting '{ h = "1 mm" }' 'sweep = { param = "contact_detection", values = ["nodal_gap", "touching"] }')"
+  expect "switch given a number (SPH)" "enhanced_thermal" run "$(typed_case afrasiabi2021 sph sph sph_cutting '{ enhanced_thermal = 0.5 }')"
+  expect "option given a number (limit)" "steady_state"   run "$(typed_case figueiredo2024 lim limit limit_cutting '{ steady_state = 2 }')"
+  expect "option given a number (EFG)" "criterion"        run "$(typed_case kahwash2018 efg efg efg_cutting '{ criterion = 2 }')"
+  # selectors name only declared outputs and tables (see `cutbench describe SOLVER`)
+  expect "check of an undeclared output" "value.output" run "$(typed_case nairn2015 out mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[checks]]
+key = "k"
+kind = "verification"
+metric = "relative"
+units = "N/m"
+source = "test"
+reference = 1.0
+tolerance = 0.1
+value = { series = "s", output = "F_cut" }')")"
+  expect "check of an undeclared table" "value.table" run "$(typed_case nairn2015 tab mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[checks]]
+key = "k"
+kind = "verification"
+metric = "relative"
+units = "N/m"
+source = "test"
+reference = 1.0
+tolerance = 0.1
+value = { series = "s", run = 0, table = "force", output = "F_c", row = -1 }')")"
+  expect "check of an undeclared column" "value.x" run "$(typed_case nairn2015 col mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[checks]]
+key = "k"
+kind = "verification"
+metric = "relative"
+units = "N/m"
+source = "test"
+reference = 1.0
+tolerance = 0.1
+value = { series = "s", run = 0, table = "forces", output = "F_c", x = "time", at = 0.001 }')")"
+  expect "check of a series not in the case" "value.series" run "$(typed_case nairn2015 ser mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[checks]]
+key = "k"
+kind = "verification"
+metric = "relative"
+units = "N/m"
+source = "test"
+reference = 1.0
+tolerance = 0.1
+value = { series = "mpm", output = "F_c" }')")"
+  expect "plot line of an undeclared column" "lines[0].y" run "$(typed_case nairn2015 plt mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[plots]]
+name = "p"
+[[plots.lines]]
+series = "s"
+run = 0
+table = "forces"
+x = "t"
+y = "Fc"')")"
+  expect_cmd "describe an unknown solver" "name" describe mpm_cuting
+  expect_eval "eval option by an unknown name" "criterion" failure_envelope criterion=tsai plane=s11_s22
+  expect_eval "eval option by its old code"    "plane"     failure_envelope criterion=hashin plane=0
+else
+  echo "skip typed solver parameters: no solvers in this build (CUTBENCH_SOLVERS=OFF)"
+fi
+expect "analytic option by its old code" "criterion" run "$(typed_case kahwash2018 env analytic failure_envelope '{ criterion = 0, plane = "s11_s22" }')"
+rm -rf "$typed"
+
 # Resource exhaustion: nesting and size are refused before the file is parsed.
 gen=$(mktemp -d); mkdir -p "$gen/nairn2015"
 { echo 'id = "nairn2015/deep_header"'; printf '['; for i in $(seq 1 2000); do printf 'a.'; done; echo 'b]'; } > "$gen/nairn2015/deep_header.toml"

@@ -5,7 +5,7 @@
 
 #include "cutbench/common/errors.hpp"
 #include "cutbench/mpm/cutting.hpp"
-#include "cutbench/mpm/solver.hpp"
+#include "cutbench/mpm/register.hpp"
 
 using namespace cutbench;
 using namespace cutbench::mpm;

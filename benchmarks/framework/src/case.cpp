@@ -1,4 +1,5 @@
 #include "cutbench/framework/case.hpp"
+#include "cutbench/framework/methods.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -218,19 +219,33 @@ double quantity(const json& v, Dim dim, const std::string& field) {
   throw InputError(field, "expected a number or a \"value unit\" string");
 }
 
+// A parameter value as a case file writes it, by the parameter's kind: a number or "value unit"
+// string (real, integer), true/false (switch), an option name (option).
+double param_quantity(const json& v, const ParamSpec& p, const std::string& field) {
+  switch (p.kind) {
+    case ParamKind::boolean:
+      if (!v.is_boolean()) throw InputError(field, "a switch: true or false (got " + v.dump() + ")");
+      return v.get<bool>() ? 1.0 : 0.0;
+    case ParamKind::option:
+      if (!v.is_string()) throw InputError(field, describe_range(p) + " (got " + v.dump() + ")");
+      return option_index(p, v.get<std::string>(), field);
+    case ParamKind::integer: {
+      const double x = quantity(v, p.dim, field);
+      if (!(std::isfinite(x) && x == std::round(x))) {
+        throw InputError(field, "a whole number (got " + v.dump() + "); expected " + describe_range(p));
+      }
+      return x;
+    }
+    case ParamKind::real: break;
+  }
+  return quantity(v, p.dim, field);
+}
+
 const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::string& name) {
   for (const auto& p : params) {
     if (p.name == name) return &p;
   }
   return nullptr;
-}
-
-// The numerical method a solver name belongs to ("mpm_cutting" -> "mpm"), or "" for other names.
-std::string solver_method(const std::string& model) {
-  for (const char* m : {"mpm", "sph", "limit", "efg"}) {
-    if (model.rfind(std::string(m) + "_", 0) == 0) return m;
-  }
-  return {};
 }
 
 // True when some registered solver belongs to this method ("mpm" -> "mpm_cutting", ...).
@@ -248,6 +263,13 @@ std::vector<double> linspace(double a, double b, int n) {
 }
 
 }  // namespace
+
+std::string solver_method(const std::string& model) {
+  for (const auto& m : detail::source_tree_methods()) {
+    if (model.rfind(m + "_", 0) == 0) return m;
+  }
+  return {};
+}
 
 std::vector<Values> series_points(const SeriesSpec& s, ReferenceCache& refs) {
   std::vector<Values> pts;
@@ -306,6 +328,97 @@ std::vector<std::string> varied_params(const SeriesSpec& s) {
   }
   return names;
 }
+
+namespace {
+std::string name_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+// The columns of a series' result table: the varied parameters, then the model's outputs (and
+// `applicable`) or the solver's declared scalars.
+std::vector<std::string> series_columns(const SeriesSpec& s) {
+  std::vector<std::string> cols = varied_params(s);
+  if (s.solver) {
+    for (const auto& o : SolverRegistry::instance().find(s.model)->scalars) cols.push_back(o.name);
+  } else {
+    for (const auto& o : ModelRegistry::instance().get(s.model).outputs) cols.push_back(o.name);
+    cols.push_back("applicable");
+  }
+  return cols;
+}
+
+// A selector of computed data (a check's value, a link, a plot line) names only what the series'
+// model or solver declares: checked at load, before anything runs. `names` are the series of the
+// case in every tier; a series of another tier, or a pending one, is not resolved here.
+void validate_selector(const json& sel, const std::string& field, const std::vector<SeriesSpec>& series,
+                       const std::set<std::string>& names, const char* output_key = "output") {
+  if (sel.is_number()) return;  // a constant inside ratio/difference/product
+  if (!sel.is_object()) throw InputError(field, "a selector table { series = ..., output = ... }");
+  for (const char* op : {"ratio", "difference", "product"}) {
+    if (!sel.contains(op)) continue;
+    const json& ab = sel[op];
+    if (!ab.is_array() || ab.size() != 2) throw InputError(field + "." + op, "expected [a, b]");
+    validate_selector(ab[0], field + "." + op + "[0]", series, names);
+    validate_selector(ab[1], field + "." + op + "[1]", series, names);
+    return;
+  }
+  if (!sel.contains("series") || !sel["series"].is_string()) throw InputError(field + ".series", "the name of a series");
+  const std::string name = sel["series"].get<std::string>();
+  if (!names.count(name)) throw InputError(field + ".series", "no series '" + name + "' in this case");
+  const SeriesSpec* s = nullptr;
+  for (const auto& ss : series) {
+    if (ss.name == name) s = &ss;
+  }
+  if (!s || !s->pending.empty()) return;  // another tier's series, or declared only
+  auto column_name = [&](const char* key) -> std::string {
+    if (!sel.contains(key)) return {};
+    if (!sel[key].is_string()) throw InputError(field + "." + key, "the name of an output column");
+    return sel[key].get<std::string>();
+  };
+  const std::string out = column_name(output_key), x = column_name("x");
+  if (out.empty()) throw InputError(field + "." + output_key, "missing");
+  std::vector<std::string> cols;
+  std::string owner;
+  if (sel.contains("run")) {
+    if (!sel["run"].is_number_integer() || sel["run"].get<long long>() < 0) {
+      throw InputError(field + ".run", "the index of a run of the series (0, 1, ...)");
+    }
+    if (!s->solver) throw InputError(field + ".run", "series '" + name + "' evaluates a model: it has no runs");
+    const SolverSpec& sv = *SolverRegistry::instance().find(s->model);
+    std::vector<std::string> tables;
+    for (const auto& t : sv.tables) tables.push_back(t.name);
+    const std::string tname = sel.value("table", std::string());
+    const TableSpec* t = sv.table(tname);
+    if (!t) {
+      throw InputError(field + ".table", "'" + tname + "' is not a table of " + sv.name + " (tables: " +
+                                             name_list(tables) + "; see `cutbench describe " + sv.name + "`)");
+    }
+    for (const auto& c : t->columns) cols.push_back(c.name);
+    owner = "table '" + tname + "' of " + sv.name;
+  } else {
+    cols = series_columns(*s);
+    owner = "series '" + name + "' (" + s->model + ")";
+  }
+  for (const auto& [key, col] : {std::pair<std::string, std::string>{output_key, out}, {"x", x}}) {
+    if (col.empty()) continue;
+    if (std::find(cols.begin(), cols.end(), col) == cols.end()) {
+      throw InputError(field + "." + key, "'" + col + "' is not an output of " + owner + " (has: " + name_list(cols) +
+                                              "; see `cutbench describe " + s->model + "`)");
+    }
+  }
+}
+
+std::set<std::string> all_series_names(const json& doc) {
+  std::set<std::string> names;
+  if (!doc.contains("series") || !doc["series"].is_array()) return names;
+  for (const auto& s : doc["series"]) {
+    if (s.is_object() && s.contains("name") && s["name"].is_string()) names.insert(s["name"].get<std::string>());
+  }
+  return names;
+}
+}  // namespace
 
 std::vector<fs::path> discover_case_files(const fs::path& root) {
   std::vector<fs::path> files;
@@ -497,16 +610,19 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       for (const auto& [k, v] : params.items()) {
         const ParamSpec* p = find_param(*pspecs, k);
         if (!p) throw InputError(sw + "params." + k, "unknown parameter of '" + ss.model + "'");
-        ss.params[k] = quantity(v, p->dim, sw + "params." + k);
+        ss.params[k] = param_quantity(v, *p, sw + "params." + k);
       }
       auto sweep_values = [&](const json& sweep, const ParamSpec& p, const std::string& f) {
         std::vector<double> vals;
         if (sweep.contains("values")) {
           if (!sweep["values"].is_array()) throw InputError(f + ".values", "an array of values");
-          for (const auto& v : sweep["values"]) vals.push_back(quantity(v, p.dim, f + ".values"));
+          for (const auto& v : sweep["values"]) vals.push_back(param_quantity(v, p, f + ".values"));
         } else if (sweep.contains("from") && sweep.contains("to") && sweep.contains("n")) {
-          const double a = quantity(sweep["from"], p.dim, f + ".from");
-          const double b = quantity(sweep["to"], p.dim, f + ".to");
+          if (p.kind == ParamKind::option || p.kind == ParamKind::boolean) {
+            throw InputError(f, "'" + p.name + "' is " + describe_range(p) + ": list them in values = [...]");
+          }
+          const double a = param_quantity(sweep["from"], p, f + ".from");
+          const double b = param_quantity(sweep["to"], p, f + ".to");
           if (!sweep["n"].is_number_integer() || sweep["n"].get<long long>() < 1 || sweep["n"].get<long long>() > 100000) {
             throw InputError(f + ".n", "a whole number of points in 1..100000 (got " + sweep["n"].dump() + ")");
           }
@@ -535,7 +651,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
           if (!p) throw InputError(sw + "zip." + k, "unknown parameter of '" + ss.model + "'");
           std::vector<double> vals;
           if (!v.is_array()) throw InputError(sw + "zip." + k, "an array of values");
-          for (const auto& x : v) vals.push_back(quantity(x, p->dim, sw + "zip." + k));
+          for (const auto& x : v) vals.push_back(param_quantity(x, *p, sw + "zip." + k));
           if (vals.size() != ss.sweep->values.size()) {
             throw InputError(sw + "zip." + k, "has " + std::to_string(vals.size()) + " values, sweep has " +
                                                   std::to_string(ss.sweep->values.size()));
@@ -557,6 +673,9 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
           const auto col = v.get<std::string>();
           const auto& column = t.column(col);
           const ParamSpec* p = find_param(*pspecs, k);
+          if (p->kind == ParamKind::option || p->kind == ParamKind::boolean) {
+            throw InputError(sw + "rows.params." + k, "'" + k + "' is " + describe_range(*p) + ", not a table column");
+          }
           if (column.unit.empty()) throw InputError(sw + "rows.params." + k, "column '" + col + "' is text");
           const UnitInfo u = unit_info(column.unit, sw + "rows.params." + k);
           if (!same_dimension(u.dim, p->dim)) {
@@ -578,6 +697,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
           bool earlier = false;
           for (const auto& prev : c.series) earlier = earlier || prev.name == from;
           if (!earlier) throw InputError(sw + "link." + k, "series '" + from + "' must be declared before this one");
+          validate_selector(v, sw + "link." + k, c.series, all_series_names(doc));
           ss.links[k] = {from, v["output"].get<std::string>()};
         }
       }
@@ -610,6 +730,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
     std::size_t idx = 0;
     std::set<std::string> keys;
     std::vector<std::string> findings;  // read on first use
+    const std::set<std::string> series_names = all_series_names(doc);
     for (const auto& ch : doc["checks"]) {
       const std::string where = "checks[" + std::to_string(idx++) + "]";
       check_keys(ch, kCheckKeys, where);
@@ -688,10 +809,26 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       if (cs.reference.is_object() && cs.reference.contains("file")) {
         load_reference(root / "reference_data" / c.paper / cs.reference["file"].get<std::string>(), cw + "reference.file");
       }
+      validate_selector(cs.value, cw + "value", c.series, series_names);
       c.checks.push_back(std::move(cs));
     }
   }
-  if (doc.contains("plots")) c.plots = doc["plots"];
+  if (doc.contains("plots")) {
+    c.plots = doc["plots"];
+    const std::set<std::string> names = all_series_names(doc);
+    std::size_t ip = 0;
+    for (const auto& plot : c.plots) {
+      const std::string pw = "plots[" + std::to_string(ip++) + "]";
+      if (!plot.is_object() || !plot.contains("lines") || !plot["lines"].is_array()) continue;
+      std::size_t il = 0;
+      for (const auto& line : plot["lines"]) {
+        const std::string lw = pw + ".lines[" + std::to_string(il++) + "]";
+        if (line.is_object() && line.contains("series") && line.contains("y")) {
+          validate_selector(line, lw, c.series, names, "y");
+        }
+      }
+    }
+  }
   if (doc.contains("tables")) c.tables = doc["tables"];
   return c;
 }

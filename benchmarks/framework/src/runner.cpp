@@ -16,43 +16,7 @@
 #include "cutbench/common/errors.hpp"
 #include "cutbench/framework/run_cache.hpp"
 #include "cutbench/common/checkpoint.hpp"
-// Each solver library defines cutbench::<method>::register_solvers(SolverRegistry&).
-#ifdef CUTBENCH_HAVE_MPM
-namespace cutbench::mpm {
-void register_solvers(SolverRegistry& registry);
-}
-#endif
-#ifdef CUTBENCH_HAVE_SPH
-namespace cutbench::sph {
-void register_solvers(SolverRegistry& registry);
-}
-#endif
-#ifdef CUTBENCH_HAVE_LIMIT
-namespace cutbench::limit {
-void register_solvers(SolverRegistry& registry);
-}
-#endif
-#ifdef CUTBENCH_HAVE_EFG
-namespace cutbench::efg {
-void register_solvers(SolverRegistry& registry);
-}
-#endif
-
-// Source identities of the solver methods, generated at build time (cmake/source_identity.cmake).
-namespace cutbench::framework::detail {
-const char* source_identity_mpm();
-const char* source_identity_sph();
-const char* source_identity_limit();
-const char* source_identity_efg();
-const char* build_settings_mpm();
-const char* build_settings_sph();
-const char* build_settings_limit();
-const char* build_settings_efg();
-const char* sources_digest_mpm();
-const char* sources_digest_sph();
-const char* sources_digest_limit();
-const char* sources_digest_efg();
-}  // namespace cutbench::framework::detail
+#include "cutbench/framework/methods.hpp"
 
 namespace cutbench::framework {
 
@@ -65,48 +29,25 @@ int max_threads() {
 #endif
 }
 
-// Registers one method's solvers and gives those it adds the method's source identity
-// (register_solvers is idempotent: a second call adds nothing and keeps the identities).
-[[maybe_unused]] void register_method(void (*reg)(SolverRegistry&), const char* identity, const char* settings) {
-  SolverRegistry& registry = SolverRegistry::instance();
-  const std::size_t before = registry.all().size();
-  reg(registry);
-  for (std::size_t k = before; k < registry.all().size(); ++k) {
-    set_solver_identity(registry.all()[k].name, identity, settings);
-  }
-}
 }  // namespace
 
 void register_all() {
   analytic::register_models(ModelRegistry::instance());
-#ifdef CUTBENCH_HAVE_MPM
-  register_method(mpm::register_solvers, detail::source_identity_mpm(), detail::build_settings_mpm());
-#endif
-#ifdef CUTBENCH_HAVE_SPH
-  register_method(sph::register_solvers, detail::source_identity_sph(), detail::build_settings_sph());
-#endif
-#ifdef CUTBENCH_HAVE_LIMIT
-  register_method(limit::register_solvers, detail::source_identity_limit(), detail::build_settings_limit());
-#endif
-#ifdef CUTBENCH_HAVE_EFG
-  register_method(efg::register_solvers, detail::source_identity_efg(), detail::build_settings_efg());
-#endif
+  SolverRegistry& registry = SolverRegistry::instance();
+  for (const auto& m : detail::compiled_methods()) {
+    // register_solvers is idempotent: a second call adds nothing and keeps the identities
+    const std::size_t before = registry.all().size();
+    m.register_solvers(registry);
+    for (std::size_t k = before; k < registry.all().size(); ++k) {
+      set_solver_identity(registry.all()[k].name, m.source_identity(), m.build_settings());
+    }
+  }
 }
 
 std::string solver_sources(const std::string& method) {
-#ifdef CUTBENCH_HAVE_MPM
-  if (method == "mpm") return detail::sources_digest_mpm();
-#endif
-#ifdef CUTBENCH_HAVE_SPH
-  if (method == "sph") return detail::sources_digest_sph();
-#endif
-#ifdef CUTBENCH_HAVE_LIMIT
-  if (method == "limit") return detail::sources_digest_limit();
-#endif
-#ifdef CUTBENCH_HAVE_EFG
-  if (method == "efg") return detail::sources_digest_efg();
-#endif
-  (void)method;
+  for (const auto& m : detail::compiled_methods()) {
+    if (method == m.name) return m.sources_digest();
+  }
   return {};
 }
 
@@ -190,6 +131,16 @@ void require_finite(const RunOutput& run, const std::string& where) {
   }
 }
 
+// A run keeps to its solver's declaration (the seam: outputs are declared in the solver alone);
+// anything else is a fault of the solver, an ERROR of the series.
+void require_declared(const SolverSpec& sv, const RunOutput& run, const std::string& where) {
+  const auto extra = undeclared_outputs(sv, run);
+  if (extra.empty()) return;
+  std::string list;
+  for (const auto& e : extra) list += (list.empty() ? "" : ", ") + e;
+  throw std::runtime_error(where + ": the run returned outputs " + sv.name + " does not declare: " + list);
+}
+
 SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const ProgressFn& progress,
                         double frac0, double frac1) {
   SeriesResult out;
@@ -249,6 +200,7 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
     std::string cache_path;
     RunOutput run = solver_run(*sv, params, inner, &reused, &cache_path);
     require_finite(run, s.name + " point " + std::to_string(k + 1));
+    require_declared(*sv, run, s.name + " point " + std::to_string(k + 1));
     if (reused) {
       run.notes.push_back("point " + std::to_string(k + 1) + " of series '" + s.name + "' reused from the run cache (" +
                           std::filesystem::path(cache_path).filename().string() + ")");
@@ -263,19 +215,6 @@ SeriesResult run_series(const SeriesSpec& s, ReferenceCache& refs, const Progres
     out.runs.push_back(std::move(run));
   }
   for (const auto& o : sv->scalars) out.table.add(o.name, si_unit(o.dim), scal[o.name]);
-  // Scalars a run reports beyond the declared ones are kept too (unit from the run).
-  for (std::size_t k = 0; k < out.runs.size(); ++k) {
-    for (const auto& [name, value] : out.runs[k].scalars) {
-      if (out.table.columns.count(name)) continue;
-      std::vector<double> col(out.runs.size(), nan_value());
-      for (std::size_t j = 0; j < out.runs.size(); ++j) {
-        auto it = out.runs[j].scalars.find(name);
-        if (it != out.runs[j].scalars.end()) col[j] = it->second;
-      }
-      auto u = out.runs[k].scalar_units.find(name);
-      out.table.add(name, u == out.runs[k].scalar_units.end() ? "1" : u->second, col);
-    }
-  }
   return out;
 }
 

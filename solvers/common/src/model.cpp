@@ -33,10 +33,77 @@ ParamSpec& positive(ParamSpec& p) {
   return p;
 }
 
-ParamSpec& non_negative(ParamSpec& p) {
-  p.min = 0.0;
-  p.min_inclusive = true;
+ParamSpec integer_param(std::string name, std::string description, std::optional<double> default_value, double min,
+                        double max) {
+  ParamSpec p = param(std::move(name), Dim::dimensionless, std::move(description), default_value, min, max);
+  p.kind = ParamKind::integer;
   return p;
+}
+
+ParamSpec switch_param(std::string name, std::string description, bool default_value) {
+  ParamSpec p = param(std::move(name), Dim::dimensionless, std::move(description), default_value ? 1.0 : 0.0, 0.0, 1.0);
+  p.kind = ParamKind::boolean;
+  return p;
+}
+
+ParamSpec option_param(std::string name, std::string description, std::vector<ParamOption> options,
+                       const std::string& default_option) {
+  ParamSpec p = param(std::move(name), Dim::dimensionless, std::move(description));
+  p.kind = ParamKind::option;
+  p.options = std::move(options);
+  p.min = 0.0;
+  p.max = static_cast<double>(p.options.size()) - 1.0;
+  p.default_value = option_index(p, default_option, p.name);
+  return p;
+}
+
+std::string kind_name(ParamKind kind) {
+  switch (kind) {
+    case ParamKind::real: return "real";
+    case ParamKind::integer: return "integer";
+    case ParamKind::boolean: return "switch";
+    case ParamKind::option: return "option";
+  }
+  return "real";
+}
+
+namespace {
+std::string option_list(const ParamSpec& p) {
+  std::string s;
+  for (const auto& o : p.options) s += (s.empty() ? "\"" : ", \"") + o.name + "\"";
+  return s;
+}
+}  // namespace
+
+int option_index(const ParamSpec& p, const std::string& text, const std::string& field) {
+  for (std::size_t i = 0; i < p.options.size(); ++i) {
+    if (p.options[i].name == text) return static_cast<int>(i);
+  }
+  throw InputError(field, "one of " + option_list(p) + " (got \"" + text + "\")");
+}
+
+std::string format_param_value(const ParamSpec& p, double value) {
+  if (p.kind == ParamKind::option) {
+    const auto i = static_cast<std::size_t>(value);
+    if (value >= 0.0 && i < p.options.size() && static_cast<double>(i) == value) return p.options[i].name;
+  }
+  if (p.kind == ParamKind::boolean && (value == 0.0 || value == 1.0)) return value == 1.0 ? "true" : "false";
+  if (std::isnan(value)) return "unset";
+  std::ostringstream os;
+  os.precision(p.kind == ParamKind::integer ? 15 : 6);
+  os << value;
+  return os.str();
+}
+
+double parse_param_value(const ParamSpec& p, const std::string& text, const std::string& field) {
+  switch (p.kind) {
+    case ParamKind::option: return option_index(p, text, field);
+    case ParamKind::boolean:
+      if (text == "true") return 1.0;
+      if (text == "false") return 0.0;
+      throw InputError(field, "a switch: true or false (got \"" + text + "\")");
+    default: return parse_quantity(text, p.dim, field);
+  }
 }
 
 int whole_number(const Values& v, const std::string& name) {
@@ -49,6 +116,8 @@ int whole_number(const Values& v, const std::string& name) {
 }
 
 std::string describe_range(const ParamSpec& p) {
+  if (p.kind == ParamKind::option) return "one of " + option_list(p);
+  if (p.kind == ParamKind::boolean) return "true or false";
   std::ostringstream os;
   os.precision(6);
   const std::string unit = si_unit(p.dim);
@@ -102,6 +171,10 @@ Values validate_params(const ModelSpec& spec, const Values& given) {
                                    p.description + ", " + describe_range(p) + ")");
     }
     if (!std::isfinite(v)) throw InputError(p.name, "must be finite");
+    if (p.kind != ParamKind::real && v != std::round(v)) {
+      throw InputError(p.name, "a " + std::string(p.kind == ParamKind::integer ? "whole number" : kind_name(p.kind)) +
+                                   " (got " + format_param_value(p, v) + "); expected " + describe_range(p));
+    }
     const bool below = p.min_inclusive ? v < p.min : v <= p.min;
     const bool above = p.max_inclusive ? v > p.max : v >= p.max;
     if (below || above) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cutbench/common/solver.hpp"
+#include "cutbench/efg/register.hpp"
 #include "cutbench/efg/cutting.hpp"
 #include "cutbench/efg/verification.hpp"
 
@@ -13,6 +14,11 @@ namespace {
 
 ParamSpec p(const std::string& name, Dim dim, const std::string& desc, double def, double lo, double hi) {
   return param(name, dim, desc, def, lo, hi);
+}
+
+ParamSpec weight_param() {
+  return option_param("weight", "MLS weight function",
+                      {{"regularized", "Most-Bucher regularised weight"}, {"cubic_spline", "cubic spline"}}, "regularized");
 }
 
 WeightParams weight_of(const Values& v) {
@@ -51,10 +57,10 @@ void register_solvers(SolverRegistry& registry) {
   cant.name = "efg_cantilever";
   cant.description = "EFG static Timoshenko cantilever (plane stress, isotropic): tip deflection and error norms";
   cant.source = "Kahwash et al. 2018 sections 2.2-3.1 (discretisation); Timoshenko & Goodier closed form";
-  cant.params = {p("nodes_x", Dim::dimensionless, "nodes along the beam", 49, 3, 400),
-                 p("nodes_y", Dim::dimensionless, "nodes through the depth", 13, 3, 200),
+  cant.params = {integer_param("nodes_x", "nodes along the beam", 49, 3, 400),
+                 integer_param("nodes_y", "nodes through the depth", 13, 3, 200),
                  p("support_factor", Dim::dimensionless, "domain of influence / nodal spacing", 2.5, 1.2, 6),
-                 p("weight", Dim::dimensionless, "0: Most-Bucher regularised, 1: cubic spline", 0, 0, 1),
+                 weight_param(),
                  p("length", Dim::length, "beam length", 48.0, 0, inf),
                  p("height", Dim::length, "beam depth", 12.0, 0, inf),
                  p("E", Dim::stress, "Young's modulus", 3.0e7, 0, inf),
@@ -91,11 +97,16 @@ void register_solvers(SolverRegistry& registry) {
   wave.params = material_params();
   for (auto q : {p("theta", Dim::angle, "fibre angle to the bar axis", 0.0, -pi, pi),
                  p("length", Dim::length, "bar length", 0.2, 0, inf),
-                 p("nodes_x", Dim::dimensionless, "nodes along the bar", 201, 11, 4000),
+                 integer_param("nodes_x", "nodes along the bar", 201, 11, 4000),
                  p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0)}) {
     wave.params.push_back(q);
   }
-  wave.params.push_back(p("weight", Dim::dimensionless, "0: Most-Bucher regularised, 1: cubic spline", 0, 0, 1));
+  wave.params.push_back(weight_param());
+  wave.tables = {{"station_velocity",
+                  "axial velocity at the quarter and three-quarter stations",
+                  {{"t", "s", "time"},
+                   {"v_quarter", "m/s", "velocity at x = L/4"},
+                   {"v_three_quarter", "m/s", "velocity at x = 3L/4"}}}};
   wave.scalars = {{"wave_speed", Dim::velocity, "measured front speed (half-amplitude arrival)"},
                   {"wave_speed_exact", Dim::velocity, "sqrt(Qbar11/rho)"},
                   {"wave_speed_rel_error", Dim::dimensionless, "measured/exact - 1"},
@@ -126,10 +137,10 @@ void register_solvers(SolverRegistry& registry) {
   patch.source = "Kahwash et al. 2018 sections 2.2-2.3, 3.1";
   patch.params = material_params();
   for (auto q : {p("theta", Dim::angle, "fibre angle", pi / 4, -pi, pi),
-                 p("nodes", Dim::dimensionless, "nodes per side", 11, 3, 200),
+                 integer_param("nodes", "nodes per side", 11, 3, 200),
                  p("jitter", Dim::dimensionless, "interior node jitter / spacing", 0.3, 0, 0.45),
-                 p("gauss", Dim::dimensionless, "Gauss points per direction per cell", 2, 1, 4),
-                 p("weight", Dim::dimensionless, "0: Most-Bucher regularised, 1: cubic spline", 0, 0, 1)}) {
+                 integer_param("gauss", "Gauss points per direction per cell", 2, 1, 4),
+                 weight_param()}) {
     patch.params.push_back(q);
   }
   patch.scalars = {{"max_F_error", Dim::dimensionless, "max |F_G - F| (homogeneous deformation)"},
@@ -155,7 +166,7 @@ void register_solvers(SolverRegistry& registry) {
   cut.source = "Kahwash et al. 2018 sections 2-3 and 5, Tables 2-3";
   cut.params = material_params();
   for (auto q : {p("theta", Dim::angle, "fibre angle: fibres along (cos, sin) with the tool moving +x", pi / 6, 0, pi),
-                 p("criterion", Dim::dimensionless, "0 max stress, 1 Hashin, 2 LaRC02", 2, 0, 2),
+                 analytic::criterion_param("larc02"),
                  p("X_T", Dim::stress, "fibre tensile strength (Table 2)", 697.8e6, 0, inf),
                  p("X_C", Dim::stress, "fibre compressive strength (Table 2)", 443.76e6, 0, inf),
                  p("Y_T", Dim::stress, "transverse tensile strength (Table 2)", 89.7216e6, 0, inf),
@@ -176,23 +187,34 @@ void register_solvers(SolverRegistry& registry) {
                  p("clearance", Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
                  p("edge_radius", Dim::length, "cutting-edge radius (assumption, not in the paper; 0: sharp)", 0.0, 0, inf),
                  p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1),
-                 p("degradation", Dim::dimensionless,
-                   "0: sudden (failed moduli x residual), 1: mode factors of Camanho-Matthews/Tserpes", 1, 0, 1),
-                 p("erosion", Dim::dimensionless, "separation: 0 none, 1 fibre and matrix failed, 2 either", 1, 0, 2),
+                 option_param("degradation", "stiffness degradation of failed material",
+                              {{"sudden", "failed moduli x residual"}, {"mode_factors", "mode factors of Camanho-Matthews/Tserpes"}},
+                              "mode_factors"),
+                 option_param("erosion", "separation of failed material",
+                              {{"none", "no separation"}, {"fibre_and_matrix", "fibre and matrix failed"}, {"either", "fibre or matrix failed"}},
+                              "fibre_and_matrix"),
                  p("collapse_ratio", Dim::dimensionless,
                    "collapse erosion: failed material whose nodes come closer than this x the initial spacing is eroded (0: off)",
                    0.1, 0, 0.99),
-                 p("visibility", Dim::dimensionless, "visibility criterion across the notch and the cut line (0/1)", 1, 0, 1),
+                 switch_param("visibility", "visibility criterion across the notch and the cut line", true),
                  p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99),
-                 p("drop_window", Dim::dimensionless, "steps of the running mean of dt", 200, 1, 1e6),
+                 integer_param("drop_window", "steps of the running mean of dt", 200, 1, 1e6),
                  p("min_travel", Dim::length, "no chip-completion detection before this travel", 0.0, 0, inf),
-                 p("completion_guard", Dim::dimensionless,
-                   "a drop counts only once 1: damaged (2: eroded, ahead of the edge) Gauss points connect edge and free surface; 0: always",
-                   2, 0, 2),
+                 option_param("completion_guard", "when a drop of the time step counts as chip completion",
+                              {{"always", "at any drop"}, {"damaged_path", "once damaged Gauss points connect the edge and the free surface"},
+                               {"eroded_path", "once eroded Gauss points ahead of the edge connect the edge and the free surface"}},
+                              "eroded_path"),
                  p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0),
-                 p("snapshots", Dim::dimensionless, "damage snapshots kept (k/n of the run)", 3, 0, 20)}) {
+                 integer_param("snapshots", "damage snapshots kept (k/n of the run)", 3, 0, 20)}) {
     cut.params.push_back(q);
   }
+  cut.tables = {{"forces",
+                 "tool force history",
+                 {{"t", "s", "time"},
+                  {"travel", "m", "tool travel after first contact"},
+                  {"F_c", "N/m", "cutting force per unit width"},
+                  {"F_t", "N/m", "thrust force per unit width"},
+                  {"dt", "s", "critical time step (Eq. 56)"}}}};
   cut.scalars = {{"F_c", Dim::force_per_width, "mean cutting force from first contact to the end (chip completion)"},
                  {"F_t", Dim::force_per_width, "mean thrust force from first contact to the end"},
                  {"F_c_peak", Dim::force_per_width, "largest window-mean cutting force"},

@@ -24,7 +24,7 @@ ParamSpec p_nonneg(const std::string& name, Dim dim, const std::string& desc, do
   return param(name, dim, desc, def, 0.0, kInf);
 }
 ParamSpec p_int(const std::string& name, const std::string& desc, double def, double lo, double hi) {
-  return param(name, Dim::dimensionless, desc, def, lo, hi);
+  return integer_param(name, desc, def, lo, hi);
 }
 
 Values validated(const SolverSpec& spec, const Values& given_in) {
@@ -40,9 +40,7 @@ Values validated(const SolverSpec& spec, const Values& given_in) {
 }
 
 int as_int(const Values& v, const std::string& name) {
-  const double x = v.at(name);
-  if (x != std::floor(x)) throw InputError(name, "must be an integer");
-  return static_cast<int>(x);
+  return static_cast<int>(v.at(name));  // validated: a whole number, a switch or an option index
 }
 
 // solve_limit with its wall time in seconds (assembly included).
@@ -265,16 +263,52 @@ SolverSpec cutting_spec() {
   s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("t1", Dim::length, "uncut chip thickness", 1.0),
               p_pos("w", Dim::length, "width of cut", 1.0), alpha, p_nonneg("mu", Dim::dimensionless, "friction coefficient", 0.0),
               phi, l, p_int("n", "mesh density (cells across t1)", 8, 2, 64),
-              p_int("coulomb_fixed_point", "1: non-associated Coulomb (fixed point on the pressure), 0: coupled cone", 1, 0, 1),
-              p_int("streamline", "free surfaces held as streamlines (v.n = 0): 0 none, 1 uncut top, 2 top + chip back, 3 top + chip back beyond l", 1, 0, 3),
-              p_int("contact_search", "unrestricted tool: 1 = grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact; 2 = natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)", 0, 0, 2),
-              p_int("steady_state", "steady-state loop of Fig. 4 around the solve (or the search): 1 = phi <- min(phi*, phi_M) with phi* the free-surface turning point; 2 = phi* where the chip leaves the contact along the rake face (stream angle eta2 = 0, velocity tangent to the chip contour): start at phi_M, keep it when eta2 <= 1e-3 rad, else step down by 2 deg and bisect to 0.5 deg", 0, 0, 2),
+              switch_param("coulomb_fixed_point", "true: non-associated Coulomb (fixed point on the pressure); false: the coupled (associated) cone", true),
+              option_param("streamline", "free surfaces held as streamlines (v.n = 0)",
+                           {{"none", "no surface held"}, {"top", "the uncut top surface"}, {"top_back", "the uncut top and the chip back"},
+                            {"top_back_beyond", "the uncut top and the chip back beyond the contact length"}},
+                           "top"),
+              option_param("contact_search", "how the contact length l is found",
+                           {{"fixed", "l as given (contact_length)"},
+                            {"grow", "unrestricted tool: grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact"},
+                            {"separation", "unrestricted tool: natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)"}},
+                           "fixed"),
+              option_param("steady_state", "steady-state loop of Fig. 4 around the solve (or the search)",
+                           {{"off", "phi as given"},
+                            {"turning_point", "phi <- min(phi*, phi_M) with phi* the free-surface turning point"},
+                            {"tangent_exit", "phi* where the chip leaves the contact along the rake face (stream angle eta2 = 0, velocity tangent to the chip contour): start at phi_M, keep it when eta2 <= 1e-3 rad, else step down by 2 deg and bisect to 0.5 deg"}},
+                           "off"),
               p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3),
               param("eta2", Dim::angle, "stream angle of the chip beyond the contact (Fig. 5): the free chip turned by eta2 away from the tool (< 0: toward the tool side, restricted tool only)", 0.0, -0.7, 0.7),
               param("chip_extra", Dim::dimensionless, "length of the chip mesh beyond the contact, in t2", 2.0, 0.5, 10.0),
-              p_int("fit_eta2", "1: fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", 0, 0, 1),
+              switch_param("fit_eta2", "fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", false),
               p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%) from the structured mesh; at a fixed geometry, or at every phi of the steady_state = 2 loop (with contact_search: l(phi) from the uniform mesh, then the refined permanent contact over l)", 0, 0, 10),
-              p_int("refine", "kind of the adaptive refinement: 0 isotropic (longest-edge bisection), 1 anisotropic (recovered Hessian of the dissipation density -> metric-directed bisection + edge swaps, stretched along the shear bands)", 0, 0, 1)};
+              option_param("refine", "kind of the adaptive refinement",
+                           {{"isotropic", "longest-edge bisection"},
+                            {"anisotropic", "recovered Hessian of the dissipation density -> metric-directed bisection + edge swaps, stretched along the shear bands"}},
+                           "isotropic")};
+  s.tables = {{"rake_contact",
+               "contact stresses along the rake face",
+               {{"s_over_l", "1", "distance from the tool tip / contact length"},
+                {"sigma_n_over_k", "1", "normal contact stress / k"},
+                {"tau_over_k", "1", "tangential contact stress / k"},
+                {"slip_velocity", "1", "slip velocity / tool speed"},
+                {"stick", "1", "1 where the node sticks"}}},
+              {"rake_layer",
+               "adaptive meshes: the elements with an edge on the contact",
+               {{"s_over_l", "1", "element centroid distance from the tool tip / contact length"},
+                {"dissipation_density", "1", "plastic dissipation density of the element"}}},
+              {"steady_state",
+               "iterations of the steady-state loop (phi_star: turning_point; eta2, l_over_t1, elements: tangent_exit)",
+               {{"phi", "rad", "shear angle of the iteration"},
+                {"phi_star", "rad", "shear angle measured from the solution"},
+                {"eta2", "rad", "chip-end stream angle"},
+                {"fc_bar", "1", "F_c / (k t1 w)"},
+                {"l_over_t1", "1", "contact length / t1"},
+                {"elements", "1", "elements of the mesh"}}},
+              {"eta2_fit",
+               "iterations of the eta2 fit",
+               {{"eta2", "rad", "stream angle of the chip geometry"}, {"exit_angle", "rad", "chip-end exit angle"}}}};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
                {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
                {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},

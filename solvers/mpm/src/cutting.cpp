@@ -8,7 +8,7 @@
 
 #include "cutbench/common/errors.hpp"
 #include "cutbench/mpm/coverage.hpp"
-#include "cutbench/mpm/solver.hpp"
+#include "cutbench/mpm/register.hpp"
 
 namespace cutbench::mpm {
 
@@ -123,18 +123,20 @@ std::vector<ParamSpec> cutting_params() {
       param("E_T", Dim::stress, "tangent modulus of the tensile curve (E_p = E E_T/(E - E_T))", 100e6, 0.0, kInf),
       param("G_c", Dim::energy_per_area, "cohesive toughness (modes I and II)", 2000.0, 0.0, kInf, false),
       param("sigma_c", Dim::stress, "cohesive strength (modes I and II)", 40e6, 0.0, kInf, false),
-      param("traction_law", Dim::dimensionless, "0 = cubic (Eq. 3), 1 = triangular", 0.0, 0.0, 1.0),
+      option_param("traction_law", "shape of the cohesive traction law",
+                   {{"cubic", "the cubic law of Eq. 3"}, {"triangular", "linear softening"}}, "cubic"),
       param("mu", Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0),
       param("pic_fraction", Dim::dimensionless, "PIC damping fraction (paper's 1 - beta): 1 = pure PIC", 1.0, 0.0, 1.0),
-      param("position_order", Dim::dimensionless, "position update: 0, 1 or 2 (Eq. 10)", 2.0, 0.0, 2.0),
-      param("strain_update", Dim::dimensionless,
-           "0 = USL (updated grid velocities), 1 = MUSL (re-extrapolated momenta), 2 = experimental blend "
-           "(L = (L_USL + L_MUSL)/2)",
-           0.0, 0.0, 2.0),
-      param("musl_recontact", Dim::dimensionless,
-           "MUSL only: 1 = re-apply tool/crack contact to the re-extrapolated momenta (default), 0 = skip it (diagnostic)",
-           1.0, 0.0, 1.0),
-      param("particles_through_chip", Dim::dimensionless, "particles through the depth of cut", 15.0, 2.0, 200.0),
+      integer_param("position_order", "order of the particle position update (Eq. 10)", 2.0, 0.0, 2.0),
+      option_param("strain_update", "when the particle strain is updated",
+                   {{"usl", "update stress last: from the updated grid velocities"},
+                    {"musl", "modified USL: from re-extrapolated particle momenta"},
+                    {"blend", "experimental: L = (L_USL + L_MUSL)/2"}},
+                   "usl"),
+      switch_param("musl_recontact",
+                   "MUSL only: re-apply tool/crack contact to the re-extrapolated momenta (false: skip it, diagnostic)",
+                   true),
+      integer_param("particles_through_chip", "particles through the depth of cut", 15.0, 2.0, 200.0),
       param("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0),
       param("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
       param("free_crack_factor", Dim::dimensionless, "traction-free start of the crack / h", 2.0, 0.0, 200.0),
@@ -156,15 +158,15 @@ std::vector<ParamSpec> cutting_params() {
       // update with GIMP shape functions, contact and large strains diverges well before the
       // linear limit 1 (cfl = 0.99 sends particles off the grid)
       param("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 0.5, false),
-      param("contact_detection", Dim::dimensionless,
-           "0 = velocity test only, 1 = nodal centres of mass closer than contact_gap_factor*dx, "
-           "2 = particle domains touch (within contact_gap_factor*dx)",
-           1.0, 0.0, 2.0),
+      option_param("contact_detection", "when a tool/material node pair is in contact",
+                   {{"velocity", "the approach-velocity test only"},
+                    {"nodal_gap", "nodal centres of mass closer than contact_gap_factor*dx"},
+                    {"domains", "particle domains touch (within contact_gap_factor*dx)"}},
+                   "nodal_gap"),
       param("contact_gap_factor", Dim::dimensionless, "contact distance / tolerance in cells (see contact_detection)",
            1.0, 0.0, 10.0),
-      param("snapshots", Dim::dimensionless, "number of particle snapshots (evenly spaced, last at the end)", 4.0, 0.0,
-           1000.0),
-      param("threads", Dim::dimensionless, "OpenMP threads (0 = OMP_NUM_THREADS)", 0.0, 0.0, 1024.0),
+      integer_param("snapshots", "number of particle snapshots (evenly spaced, last at the end)", 4.0, 0.0, 1000.0),
+      integer_param("threads", "OpenMP threads (0 = OMP_NUM_THREADS)", 0.0, 0.0, 1024.0),
   };
 }
 
@@ -519,6 +521,14 @@ SolverSpec cutting_solver_spec() {
       {"chip_domain_gap_fraction", Dim::dimensionless, "Fig 2 metric: enclosed uncovered area / covered area"},
       {"chip_domain_overlap_fraction", Dim::dimensionless, "Fig 2 metric: multiply covered area / covered area"},
   };
+  spec.tables = {{"forces",
+                  "force history: means over each output interval",
+                  {{"t", "s", "time at the end of the interval"},
+                   {"F_c", "N/m", "cutting force of the tool on the material per unit width"},
+                   {"F_t", "N/m", "transverse force (positive pushing the material down)"},
+                   {"F_nb", "N/m", "normal force on the tool's bottom (clearance) face"},
+                   {"tip_gap", "m", "crack-tip minus tool-tip x"},
+                   {"feedback_alpha", "1/s", "grid kinetic-energy feedback damping coefficient"}}}};
   spec.run = run_cutting;
   return spec;
 }

@@ -428,7 +428,7 @@ SolverSpec detail::cutting_spec() {
   s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Sec. 5.2, Fig. 4, Table 1";
   const CuttingSetup def;
   s.params = {
-      param("particles_over_height", Dim::dimensionless, "particles over the workpiece height", def.particles_over_height, 4, 400),
+      integer_param("particles_over_height", "particles over the workpiece height", def.particles_over_height, 4, 400),
       param("length", Dim::length, "workpiece length", def.length, 1e-6, 1.0),
       param("height", Dim::length, "workpiece height", def.height, 1e-6, 1.0),
       param("uncut_thickness", Dim::length, "uncut chip thickness t_u", def.uncut_thickness, 1e-7, 1.0),
@@ -438,20 +438,34 @@ SolverSpec detail::cutting_spec() {
       param("rake", Dim::angle, "rake angle", def.rake, -60 * kDeg, 60 * kDeg),
       param("clearance", Dim::angle, "clearance angle", def.clearance, 0.5 * kDeg, 45 * kDeg),
       param("edge_radius", Dim::length, "cutting-edge radius", def.edge_radius, 0.0, 1e-3),
-      param("enhanced_thermal", Dim::dimensionless, "1: FMFS + convection/radiation (paper); 0: reference", 1.0, 0.0, 1.0),
-      param("brookshaw_band", Dim::dimensionless, "1 (default): Brookshaw on a 2h band at surfaces (energy-conserving); 0: the paper's mix (Brookshaw on surface particles only)", 1.0, 0.0, 1.0),
-      param("fixed_layers", Dim::dimensionless, "clamped particle layers at the bottom and the far end", def.fixed_layers, 1, 20),
-      param("tool_conduction", Dim::dimensionless, "1: tool particles conduct heat", 1.0, 0.0, 1.0),
+      switch_param("enhanced_thermal", "true: FMFS + convection/radiation (paper); false: the reference model", true),
+      switch_param("brookshaw_band", "true: Brookshaw on a 2h band at surfaces (energy-conserving); false: the paper's mix (Brookshaw on surface particles only)", true),
+      integer_param("fixed_layers", "clamped particle layers at the bottom and the far end", def.fixed_layers, 1, 20),
+      switch_param("tool_conduction", "tool particles conduct heat", true),
       param("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5),
       param("tool_depth", Dim::length, "size of the discretised tool band around the edge", def.tool_depth, 1e-6, 1.0),
-      param("penalty_contact", Dim::dimensionless, "1: penalty + stick-slip friction (default); 0: velocity-level contact", 1.0, 0.0, 1.0),
+      switch_param("penalty_contact", "true: penalty + stick-slip friction; false: velocity-level contact", true),
       param("contact_offset", Dim::dimensionless, "contact surface offset in particle spacings", def.contact_offset, 0.0, 1.0),
-      param("snapshots", Dim::dimensionless, "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
+      integer_param("snapshots", "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
       param("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),
       param("tool_heat_share", Dim::dimensionless, "share of the friction heat put into the tool; -1: effusivity partition sqrt(k rho c) (default)", def.tool_heat_share, -1.0, 1.0),
       param("contact_stiffness", Dim::dimensionless, "penalty contact stiffness alpha (f_N = -alpha m g / dt^2; assumed, not in the paper)", def.contact_stiffness, 0.001, 1.0),
-      param("shear_cap", Dim::dimensionless, "1: cap the friction stress at the chip's shear flow stress (Zorev); 0: Coulomb only (paper)", 0.0, 0.0, 1.0),
+      switch_param("shear_cap", "true: cap the friction stress at the chip's shear flow stress (Zorev); false: Coulomb only (paper)", false),
   };
+  s.tables = {{"forces",
+               "tool force history (window means)",
+               {{"t", "s", "time"},
+                {"cut_distance", "m", "tool travel"},
+                {"F_c", "N/m", "cutting force per unit width"},
+                {"F_t", "N/m", "thrust force per unit width"}}},
+              {"chip",
+               "chip columns at the end: one row per column of the uncut layer",
+               {{"x0", "m", "initial x of the column"},
+                {"u", "m", "lift of the column"},
+                {"s", "m", "arc length along the chip's centroid line"},
+                {"eps_p", "1", "column-mean equivalent plastic strain"},
+                {"cx", "m", "x of the column centroid"},
+                {"cy", "m", "y of the column centroid"}}}};
   s.scalars = {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
                {"F_t", Dim::force_per_width, "mean thrust force per unit width (steady part)"},
                {"F_c_rake", Dim::force_per_width, "part of F_c from contacts on the rake face"},
@@ -491,9 +505,7 @@ SolverSpec detail::cutting_spec() {
                {"serration_cv", Dim::dimensionless, "std / mean of the smoothed column-mean eps_p profile after 2 t_u of cut"}};
   s.run = [](const Values& v, const ProgressFn& progress) {
     CuttingSetup c;
-    const double n = v.at("particles_over_height");
-    if (n != std::floor(n)) throw InputError("particles_over_height", "must be an integer");
-    c.particles_over_height = static_cast<int>(n);
+    c.particles_over_height = static_cast<int>(v.at("particles_over_height"));
     c.length = v.at("length");
     c.height = v.at("height");
     c.uncut_thickness = v.at("uncut_thickness");

@@ -134,29 +134,36 @@ RunOutput run_cooling(const Values& v, const ProgressFn& progress) {
 SolverSpec detail::heat_spec() {
   SolverSpec s;
   s.name = "sph_heat";
-  s.description = "SPH transient heat conduction: decaying mode (problem 0) or cooling block (problem 1)";
+  s.description = "SPH transient heat conduction: decaying mode (problem decaying_mode) or cooling block (problem cooling_block)";
   s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Eqs. 4, 7, 8, 12, 13; Sec. 4.2";
   s.params = {
-      param("problem", Dim::dimensionless, "0: 2D decaying mode; 1: cooling block", 0.0, 0.0, 1.0),
-      param("n", Dim::dimensionless, "particles per side", 20.0, 4.0, 400.0),
-      param("scheme", Dim::dimensionless, "0: FMFS inside / Brookshaw on surface (paper); 1: Brookshaw; 2: Brookshaw band 2h", 0.0, 0.0, 2.0),
+      option_param("problem", "the heat problem", {{"decaying_mode", "2D decaying Fourier mode (exact solution)"}, {"cooling_block", "block cooling by convection and radiation"}}, "decaying_mode"),
+      integer_param("n", "particles per side", 20.0, 4.0, 400.0),
+      option_param("scheme", "the Laplacian of the heat equation", {{"fmfs", "FMFS inside, Brookshaw on the surface (paper)"}, {"brookshaw", "Brookshaw everywhere"}, {"brookshaw_band", "FMFS inside, Brookshaw on a 2h band at surfaces"}}, "fmfs"),
       param("t_end", Dim::time, "end time", 0.02, 0.0, 1e6),
-      param("conductivity", Dim::conductivity, "k (problem 1)", 50.0, 1e-6, 1e6),
-      param("density", Dim::density, "rho (problem 1)", 4430.0, 1e-6, 1e6),
-      param("specific_heat", Dim::specific_heat, "c_p (problem 1)", 560.0, 1e-6, 1e7),
-      param("h_conv", Dim::heat_transfer, "convection coefficient (problem 1)", 50.0, 0.0, 1e7),
-      param("emissivity", Dim::dimensionless, "emissivity (problem 1)", 0.3, 0.0, 1.0),
-      param("T_ambient", Dim::temperature, "ambient temperature (problem 1)", 300.0, 0.0, 1e4),
-      param("T_initial", Dim::temperature, "initial temperature (problem 1)", 1000.0, 0.0, 1e4),
+      param("conductivity", Dim::conductivity, "k (cooling_block)", 50.0, 1e-6, 1e6),
+      param("density", Dim::density, "rho (cooling_block)", 4430.0, 1e-6, 1e6),
+      param("specific_heat", Dim::specific_heat, "c_p (cooling_block)", 560.0, 1e-6, 1e7),
+      param("h_conv", Dim::heat_transfer, "convection coefficient (cooling_block)", 50.0, 0.0, 1e7),
+      param("emissivity", Dim::dimensionless, "emissivity (cooling_block)", 0.3, 0.0, 1.0),
+      param("T_ambient", Dim::temperature, "ambient temperature (cooling_block)", 300.0, 0.0, 1e4),
+      param("T_initial", Dim::temperature, "initial temperature (cooling_block)", 1000.0, 0.0, 1e4),
   };
   s.params[3].min_inclusive = false;
-  s.scalars = {{"max_rel_error", Dim::dimensionless, "problem 0: max |T - T_exact| / amplitude"},
-               {"energy_imbalance", Dim::dimensionless, "problem 1: (energy lost - flux integral) / energy lost"},
-               {"energy_lost", Dim::force_per_width, "problem 1: J per metre of depth"},
-               {"flux_integral", Dim::force_per_width, "problem 1: J per metre of depth"}};
+  s.tables = {{"profile",
+               "decaying_mode: temperature along the mid-line at the end",
+               {{"x", "m", "position"}, {"T", "K", "SPH temperature"}, {"T_exact", "K", "exact temperature"}}},
+              {"history",
+               "cooling_block: energy balance over time",
+               {{"t", "s", "time"},
+                {"energy_lost", "J/m", "heat content lost per metre of depth"},
+                {"flux_integral", "J/m", "time integral of the convection and radiation flux"},
+                {"T_mean", "K", "mean temperature"}}}};
+  s.scalars = {{"max_rel_error", Dim::dimensionless, "decaying_mode: max |T - T_exact| / amplitude"},
+               {"energy_imbalance", Dim::dimensionless, "cooling_block: (energy lost - flux integral) / energy lost"},
+               {"energy_lost", Dim::force_per_width, "cooling_block: J per metre of depth"},
+               {"flux_integral", Dim::force_per_width, "cooling_block: J per metre of depth"}};
   s.run = [](const Values& v, const ProgressFn& progress) {
-    for (const char* k : {"problem", "n", "scheme"})
-      if (v.at(k) != std::floor(v.at(k))) throw InputError(k, "must be an integer");
     return v.at("problem") == 0.0 ? run_mode(v, progress) : run_cooling(v, progress);
   };
   return s;

@@ -65,13 +65,20 @@ SolverSpec detail::laplacian_spec() {
                   "with the Brookshaw and FMFS operators";
   s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Sec. 5.1, Fig. 3; Eqs. 12-15";
   s.params = {
-      param("n", Dim::dimensionless, "particles per side", 21.0, 3.0, 2001.0),
+      integer_param("n", "particles per side", 21.0, 3.0, 2001.0),
       param("h_over_dx", Dim::dimensionless, "smoothing length over particle spacing", 1.5, 0.5, 4.0),
       param("jitter", Dim::dimensionless, "random displacement amplitude as a fraction of dx", 0.0, 0.0, 0.5, true,
             false),
-      param("seed", Dim::dimensionless, "jitter random seed", 1.0, 0.0, std::numeric_limits<double>::infinity()),
-      param("scheme", Dim::dimensionless, "0: both operators; 1: Brookshaw only; 2: FMFS only (the other column is NaN)",
-            0.0, 0.0, 2.0)};
+      integer_param("seed", "jitter random seed", 1.0, 0.0, 4294967295.0),
+      option_param("scheme", "the operators evaluated (the other column is NaN)",
+                 {{"both", "Brookshaw and FMFS"}, {"brookshaw", "Brookshaw only"}, {"fmfs", "FMFS only"}}, "both")};
+  s.tables = {{"laplacian",
+               "the reconstructed Laplacian at every particle",
+               {{"x", "1", "position"},
+                {"y", "1", "position"},
+                {"exact", "1", "exact Laplacian (4)"},
+                {"brookshaw", "1", "Brookshaw operator (NaN when not evaluated)"},
+                {"fmfs", "1", "FMFS operator (NaN when not evaluated)"}}}};
   s.scalars = {
       {"brookshaw_interior_mean", Dim::dimensionless, "mean Brookshaw Laplacian over |x|,|y| <= 0.8 (paper 4.027)"},
       {"brookshaw_interior_max_abs_error", Dim::dimensionless, "max |Brookshaw - 4| over |x|,|y| <= 0.8"},
@@ -81,10 +88,8 @@ SolverSpec detail::laplacian_spec() {
       {"fmfs_irregular", Dim::dimensionless, "particles where the FMFS system was singular"},
   };
   s.run = [](const Values& v, const ProgressFn& progress) {
-    const double nd = v.at("n");
-    if (nd != std::floor(nd)) throw InputError("n", "must be an integer");
+    const double nd = v.at("n");  // validated: a whole number
     const double sch = v.at("scheme");
-    if (sch != std::floor(sch)) throw InputError("scheme", "must be 0, 1 or 2");
     if (progress) progress(0.0, "building lattice");
     auto r = laplacian_reconstruction(static_cast<std::size_t>(nd), v.at("h_over_dx"), v.at("jitter"),
                                       static_cast<std::uint64_t>(v.at("seed")));

@@ -10,6 +10,9 @@
 //   shear  : in-plane shear index (maximum stress only; NaN elsewhere).
 // Choices (see analytic/README.md): maximum stress in the paper's squared form; UD bulk
 // workpiece, so no in-situ strength enhancement (Y_T^is = Y_T, S_L^is = S_L).
+#include <string>
+
+#include "cutbench/common/model.hpp"
 
 namespace cutbench::analytic {
 
@@ -52,6 +55,10 @@ struct FailureIndices {
 
 enum class Criterion : int { max_stress = 0, hashin = 1, larc02 = 2 };
 enum class EnvelopePlane : int { s11_s22 = 0, s22_t12 = 1 };
+
+// The case-file declaration of the criterion: options "max_stress", "hashin", "larc02" in the
+// order of Criterion (the value is the enumerator).
+ParamSpec criterion_param(const std::string& default_option);
 
 // S_T default used by Hashin and LaRC02: Y_C cos a0 (sin a0 + cos a0/tan(2 a0)).
 double transverse_shear_strength(double Y_C, double alpha0);

@@ -18,6 +18,10 @@ using json = nlohmann::json;
 
 extern const std::vector<std::string> kPaperIds;
 
+// The numerical method a solver name belongs to ("mpm_cutting" -> "mpm", for every method in the
+// source tree, built or not), or "" for other names.
+std::string solver_method(const std::string& model);
+
 
 struct SweepSpec {
   std::string param;

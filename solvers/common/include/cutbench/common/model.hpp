@@ -16,6 +16,18 @@ namespace cutbench {
 
 using Values = std::map<std::string, double>;
 
+// What kind of value a parameter takes. Every kind is carried as a double in Values (SI for real
+// parameters; the whole number; 0/1 for a switch; the option's index for an option), so the
+// solvers, the run-cache key and the result files see one representation; the declaration says
+// how a case file writes it: a number or "value unit" (real, integer), true/false (switch), one
+// of the option names (option).
+enum class ParamKind { real, integer, boolean, option };
+
+struct ParamOption {
+  std::string name;         // what a case file writes, e.g. "musl"
+  std::string description;  // one line for `cutbench describe`
+};
+
 struct ParamSpec {
   std::string name;
   Dim dim = Dim::dimensionless;
@@ -25,6 +37,8 @@ struct ParamSpec {
   double max = std::numeric_limits<double>::infinity();
   bool min_inclusive = true;
   bool max_inclusive = true;
+  ParamKind kind = ParamKind::real;
+  std::vector<ParamOption> options;  // option: the value is the index into this list
 };
 
 struct OutputSpec {
@@ -57,7 +71,22 @@ ParamSpec param(std::string name, Dim dim, std::string description);
 ParamSpec param(std::string name, Dim dim, std::string description, std::optional<double> default_value,
                 double min, double max, bool min_inclusive = true, bool max_inclusive = true);
 ParamSpec& positive(ParamSpec& p);
-ParamSpec& non_negative(ParamSpec& p);
+// A count or an order: a whole number in [min, max].
+ParamSpec integer_param(std::string name, std::string description, std::optional<double> default_value, double min,
+                        double max);
+// A switch: true or false in a case file, 1 or 0 in Values.
+ParamSpec switch_param(std::string name, std::string description, bool default_value);
+// An enumeration: one of the named options in a case file, the option's index in Values.
+ParamSpec option_param(std::string name, std::string description, std::vector<ParamOption> options,
+                       const std::string& default_option);
+// The index of option `text` of p (InputError naming `field` and the options otherwise).
+int option_index(const ParamSpec& p, const std::string& text, const std::string& field);
+// A parameter value as a case file writes it: the option name, true/false, or the number (SI).
+std::string format_param_value(const ParamSpec& p, double value);
+// A value from the command line or a case-file string: an option name, true/false, or a
+// quantity "value unit" of p's dimension. InputError naming `field` otherwise.
+double parse_param_value(const ParamSpec& p, const std::string& text, const std::string& field);
+std::string kind_name(ParamKind kind);
 // A parameter that selects an option or counts something: its value must be a whole number
 // (InputError naming the parameter otherwise, e.g. criterion = 1.4).
 int whole_number(const Values& v, const std::string& name);

@@ -75,14 +75,50 @@ struct RunOutput {
 
 using ProgressFn = std::function<void(double fraction, const std::string& message)>;
 
+// One declared column of a solver's table: its name, SI unit (as the run writes it) and meaning.
+struct ColumnSpec {
+  std::string name, unit, description;
+};
+
+// A table a run may return (a history, a profile): declared so that case files can be checked
+// against it before anything runs and `cutbench describe` can list it.
+struct TableSpec {
+  std::string name, description;
+  std::vector<ColumnSpec> columns;
+  const ColumnSpec* column(const std::string& column_name) const {
+    for (const auto& c : columns) {
+      if (c.name == column_name) return &c;
+    }
+    return nullptr;
+  }
+};
+
 struct SolverSpec {
   std::string name;         // e.g. "mpm_cutting"
   std::string description;
   std::string source;       // paper and sections
   std::vector<ParamSpec> params;
   std::vector<OutputSpec> scalars;  // the scalar results a run reports
+  std::vector<TableSpec> tables;    // the tables a run may return
   std::function<RunOutput(const Values& params, const ProgressFn& progress)> run;
+
+  const TableSpec* table(const std::string& table_name) const {
+    for (const auto& t : tables) {
+      if (t.name == table_name) return &t;
+    }
+    return nullptr;
+  }
+  const OutputSpec* scalar(const std::string& scalar_name) const {
+    for (const auto& o : scalars) {
+      if (o.name == scalar_name) return &o;
+    }
+    return nullptr;
+  }
 };
+
+// What a run returned beyond its solver's declaration (a scalar, a table or a column not declared,
+// or a column in another unit), one line each; empty when the run keeps to it.
+std::vector<std::string> undeclared_outputs(const SolverSpec& spec, const RunOutput& run);
 
 class SolverRegistry {
 public:

@@ -53,4 +53,7 @@ BenchResult bench_cutting(const CuttingSetup& s, long warmup, long steps);
 // Run a cutting case to completion and collect forces, scalars and snapshots.
 RunOutput run_cutting(const Values& params, const ProgressFn& progress);
 
+// The "mpm_cutting" SolverSpec (parameters, scalars, tables, run function).
+SolverSpec cutting_solver_spec();
+
 }  // namespace cutbench::mpm

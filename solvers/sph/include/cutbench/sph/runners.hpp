@@ -5,12 +5,11 @@
 #include <vector>
 
 #include "cutbench/common/solver.hpp"
+#include "cutbench/sph/register.hpp"
 #include "cutbench/sph/solid.hpp"
 
 namespace cutbench::sph {
 
-// Registers sph_laplacian (Afrasiabi et al. 2021, Fig. 3), ... Calling it twice adds nothing.
-void register_solvers(SolverRegistry& registry);
 
 // Fig. 3: Laplacian of f = x^2 + y^2 on an n x n lattice over [-1, 1]^2, V_j = dx^2, h = h/dx * dx.
 struct LaplacianReconstruction {

@@ -363,7 +363,7 @@ json describe_json(const ModelSpec& m) {
 
 json describe_json(const SolverSpec& sv) {
   json j = {{"name", sv.name}, {"type", "solver"}, {"method", solver_method(sv.name)}, {"description", sv.description},
-            {"source", sv.source}, {"params", json::array()}};
+            {"source", sv.source}, {"checkpoints", sv.checkpoints}, {"params", json::array()}};
   for (const auto& p : sv.params) j["params"].push_back(param_json(p));
   j["outputs"] = outputs_json(sv.scalars);
   j["tables"] = json::array();
@@ -377,7 +377,14 @@ json describe_json(const SolverSpec& sv) {
 
 void print_described(const json& j) {
   std::cout << j["name"].get<std::string>() << " (" << j["type"].get<std::string>() << ") — "
-            << j["description"].get<std::string>() << "\n  source: " << j["source"].get<std::string>() << "\n  params:\n";
+            << j["description"].get<std::string>() << "\n  source: " << j["source"].get<std::string>() << "\n";
+  if (j.contains("checkpoints")) {
+    std::cout << "  checkpoints: "
+              << (j["checkpoints"].get<bool>() ? "yes (run --run-cache DIR --checkpoint-minutes M resumes exactly)"
+                                               : "no (its runs are short)")
+              << "\n";
+  }
+  std::cout << "  params:\n";
   for (const auto& p : j["params"]) {
     std::cout << "    " << std::left << std::setw(24) << p["name"].get<std::string>() << ' ' << std::setw(8)
               << p["kind"].get<std::string>() << std::setw(8) << p["unit"].get<std::string>()
@@ -831,9 +838,9 @@ int main(int argc, char** argv) {
                   "reuse them and store new ones (resume an interrupted full tier; share runs between cases; "
                   "reports/full_tier/runs keeps the full-tier runs)");
   double checkpoint_minutes = 10.0;
-  run->add_option("--checkpoint-minutes", checkpoint_minutes,
+  auto* run_ckpt = run->add_option("--checkpoint-minutes", checkpoint_minutes,
                   "With --run-cache: minutes of wall time between two checkpoints of a solver run that supports "
-                  "them (SPH and EFG cutting); an interrupted run resumes from its last checkpoint (default 10)");
+                  "them (MPM, SPH and EFG cutting; `cutbench describe SOLVER` says which); an interrupted run resumes from its last checkpoint (default 10)");
   run->add_flag("--ctest", ctest_mode, "Exit 77 (skip) when every selected case is NOT IMPLEMENTED");
   run->add_flag("--strict", strict, "Known failures fail the run too");
 
@@ -918,6 +925,9 @@ int main(int argc, char** argv) {
     return rc == 0 ? 0 : kExitBadInput;
   }
   try {
+    if (!(checkpoint_minutes > 0.0 && checkpoint_minutes <= 10080.0)) {
+      throw InputError("--checkpoint-minutes", "minutes in (0, 10080] (got " + fmt(checkpoint_minutes) + ")");
+    }
     if (threads < 0 || threads > 1024) throw InputError("-j", "a number of threads in 1..1024 (got " + std::to_string(threads) + ")");
 #ifdef _OPENMP
     if (threads > 0) omp_set_num_threads(threads);
@@ -925,6 +935,9 @@ int main(int argc, char** argv) {
     register_all();
     if (*list) return cmd_list(list_json, results_dir, list_paper);
     if (*run) {
+      if (run_ckpt->count() > 0 && run_cache.empty()) {
+        throw InputError("--checkpoint-minutes", "checkpoints are kept beside stored runs: give --run-cache DIR too");
+      }
       set_run_cache_dir(run_cache);
       set_checkpoint_interval(60.0 * checkpoint_minutes);
       return cmd_run(run_ids, run_paper, run_tier, run_out, ctest_mode, strict);

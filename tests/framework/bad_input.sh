@@ -51,6 +51,8 @@ expect_eval "eval rake 90"        "rake"    atkins_touching G_c=2000 sigma_y=25M
 expect_eval "eval negative mu"    "mu"      atkins_touching G_c=2000 sigma_y=25MPa h=1mm rake=30deg mu=-0.1
 expect_eval "eval wrong unit"     "h: wrong unit" atkins_touching G_c=2000 sigma_y=25MPa h=1MPa rake=30deg
 expect "run cache not writable"  "--run-cache"  run afrasiabi2021/fig03 --run-cache /proc/cutbench-no-such-dir
+expect "checkpoints without a run store" "--checkpoint-minutes" run aghababaei2021/fig04 --checkpoint-minutes 5
+expect "checkpoint interval negative"    "--checkpoint-minutes" run aghababaei2021/fig04 --checkpoint-minutes -1
 expect_cmd "runs: no directory"         "runs"       runs /proc/cutbench-no-such-dir
 expect_cmd "runs --compute without cases" "--compute" runs /tmp --compute
 expect_cmd "runs: bad tier"            "--tier"     runs --case afrasiabi2021/fig06 --tier medium

@@ -2,7 +2,9 @@
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
+#include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/mpm/cutting.hpp"
 #include "cutbench/mpm/register.hpp"
@@ -168,4 +170,59 @@ BOOST_AUTO_TEST_CASE(bench_reports_throughput) {
               r.particle_steps_per_s, r.threads);
   BOOST_TEST(r.particles > 100u);
   BOOST_TEST(r.particle_steps_per_s > 0.0);
+}
+
+// Checkpoints through the shared driver: a run interrupted after every checkpoint and resumed each
+// time gives the uninterrupted result bit for bit (histories, snapshots, every scalar but timings);
+// a checkpoint of another run key is ignored.
+BOOST_AUTO_TEST_CASE(interrupted_after_every_checkpoint_equals_uninterrupted) {
+  const Values v = {{"particles_through_chip", 2.0}, {"width_factor", 10.0}, {"precrack_factor", 8.0},
+                    {"total_time", 1.5e-3},          {"snapshots", 3.0},     {"chip_room_factor", 6.0},
+                    {"threads", 1.0}};
+  const RunOutput ref = run_cutting(v, {});
+  const auto dir = std::filesystem::temp_directory_path() / "cutbench_mpm_checkpoint";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "interrupted.ckpt").string();
+  std::filesystem::remove(path);
+  // interval 0: a checkpoint at every clock check (every 256 steps); stop after each and resume
+  const CheckpointSpec spec{path, "mpm test run", 0.0, true};
+  RunOutput r;
+  int interruptions = 0;
+  for (;;) {
+    CheckpointScope scope(spec);
+    try {
+      r = run_cutting(v, {});
+      break;
+    } catch (const CheckpointStop&) {
+      ++interruptions;
+    }
+    BOOST_REQUIRE(interruptions < 100000);
+  }
+  BOOST_TEST(interruptions >= 2);
+  BOOST_REQUIRE(r.tables.size() == ref.tables.size());
+  for (const auto& [name, col] : ref.tables[0].columns) {
+    BOOST_TEST(r.tables[0].columns.at(name) == col, boost::test_tools::per_element());
+  }
+  for (const auto& [name, value] : ref.scalars) {
+    if (name == "wall_time" || name == "particle_steps_per_s") continue;
+    BOOST_TEST_CONTEXT(name) { BOOST_TEST((r.scalars.at(name) == value || (std::isnan(value) && std::isnan(r.scalars.at(name))))); }
+  }
+  BOOST_REQUIRE(r.snapshots.size() == ref.snapshots.size());
+  for (std::size_t k = 0; k < r.snapshots.size(); ++k) {
+    BOOST_TEST(r.snapshots[k].time == ref.snapshots[k].time);
+    BOOST_TEST(r.snapshots[k].x == ref.snapshots[k].x, boost::test_tools::per_element());
+    BOOST_TEST(r.snapshots[k].fields.at("sigma_eq") == ref.snapshots[k].fields.at("sigma_eq"),
+               boost::test_tools::per_element());
+  }
+  BOOST_TEST(!r.notes.empty());  // the resume is noted
+  // a checkpoint of another run is not taken over: the run starts from the beginning
+  std::filesystem::remove(path);
+  {
+    CheckpointScope write(CheckpointSpec{path, "mpm test run", 0.0, true});
+    BOOST_CHECK_THROW(run_cutting(v, {}), CheckpointStop);
+  }
+  CheckpointScope other(CheckpointSpec{path, "another run", 1e9, false});
+  const RunOutput fresh = run_cutting(v, {});
+  BOOST_TEST(fresh.tables[0].columns.at("F_c") == ref.tables[0].columns.at("F_c"), boost::test_tools::per_element());
+  for (const auto& n : fresh.notes) BOOST_TEST(n.find("resumed") == std::string::npos);
 }

@@ -257,6 +257,7 @@ void register_solvers(SolverRegistry& registry) {
                  {"rake_used", Dim::angle, "rake angle used"},
                  {"speed_used", Dim::velocity, "paper cutting speed (before time scaling)"},
                  {"wave_speed", Dim::velocity, "Eq 55 c_max = sqrt(C11/rho)"}};
+  cut.checkpoints = true;
   cut.run = [](const Values& v, const ProgressFn& progress) {
     CuttingSetup s;
     s.material = gfrp_of(v);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cutbench/common/driver.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/mpm/coverage.hpp"
 #include "cutbench/mpm/register.hpp"
@@ -271,6 +272,116 @@ void mean_std(const std::vector<double>& v, double& mean, double& sd) {
 // that a mistyped total_time is refused instead of overflowing the step count or running for weeks.
 constexpr double kMaxSteps = 1e8;
 
+// The time loop of one cutting run as the shared driver sees it (common/driver.hpp): one MPM
+// step plus its observers (blow-up guard, force-history windows, steady-window energy mark,
+// snapshot schedule, progress), with the whole state saved for checkpoints.
+class CuttingRun : public SteppedRun {
+public:
+  CuttingRun(MpmProblem& pb, double T, double out_dt, int nsnap, double t_window, long max_steps,
+             const ProgressFn& progress, double xt0)
+      : pb_(pb), T_(T), out_dt_(out_dt), nsnap_(nsnap), t_window_(t_window), max_steps_(max_steps),
+        progress_(progress), xt0_(xt0), next_out_(out_dt), t0_(std::chrono::steady_clock::now()) {}
+
+  bool done() const override { return k_ >= max_steps_ || !(pb_.time() < T_ - 0.5 * pb_.dt()); }
+  std::size_t steps() const override { return static_cast<std::size_t>(pb_.steps()); }
+
+  void advance() override {
+    pb_.step();
+    // blow-up guard: a non-finite state or a particle off the grid stops the run (every 16 steps
+    // and at the last, so that the scan costs a fraction of a step)
+    if (k_ % 16 == 15 || k_ + 1 == max_steps_ || !std::isfinite(pb_.contact_forces().total.x())) {
+      const std::string f = pb_.fault();
+      if (!f.empty()) throw std::runtime_error("MPM run stopped: " + f);
+    }
+    ++k_;
+    if (!window_open_ && pb_.time() >= t_window_ - 0.5 * pb_.dt()) {
+      window_open_ = true;
+      e_at_window_ = pb_.released_energy();
+      eI_at_window_ = e_at_window_ > 0.0 ? pb_.mode1_fraction() * e_at_window_ : 0.0;
+    }
+    const ContactForces& f = pb_.contact_forces();
+    acc_c_ += f.total.x();
+    acc_t_ += -f.total.y();
+    acc_nb_ += f.normal_below;
+    ++acc_n_;
+    if (pb_.time() >= next_out_ - 0.5 * pb_.dt()) {
+      const double n = static_cast<double>(acc_n_);
+      tt.push_back(pb_.time());
+      fc.push_back(acc_c_ / n);
+      ft.push_back(acc_t_ / n);
+      fnb.push_back(acc_nb_ / n);
+      gap.push_back(pb_.crack_tip_x() - 0.5 * pb_.config().crack.seg_len - (xt0_ + pb_.rigid_displacement().x()));
+      alph.push_back(pb_.feedback_alpha());
+      acc_c_ = acc_t_ = acc_nb_ = 0.0;
+      acc_n_ = 0;
+      next_out_ += out_dt_;
+    }
+    if (nsnap_ > 0 && pb_.time() >= T_ * (snap_done_ + 1) / nsnap_ - 0.5 * pb_.dt()) {
+      snapshots.push_back(take_snapshot(pb_));
+      ++snap_done_;
+    }
+    const double frac = pb_.time() / T_;
+    if (progress_ && frac >= next_progress_) {
+      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+      std::ostringstream msg;
+      msg.precision(3);
+      msg << "t = " << pb_.time() * 1e3 << " ms, ETA " << (frac > 0 ? el * (1.0 - frac) / frac : 0.0) << " s";
+      progress_(frac, msg.str());
+      next_progress_ += 0.01;
+    }
+  }
+
+  void save(BinaryWriter& w) const override {
+    pb_.save_state(w);
+    for (const auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph}) w.vec(*v);
+    for (double d : {acc_c_, acc_t_, acc_nb_, next_out_, e_at_window_, eI_at_window_}) w.f64(d);
+    w.u64(static_cast<std::uint64_t>(acc_n_));
+    w.u64(static_cast<std::uint64_t>(k_));
+    w.u64(static_cast<std::uint64_t>(snap_done_));
+    w.u64(window_open_ ? 1 : 0);
+    w.u64(snapshots.size());
+    for (const auto& sn : snapshots) write_snapshot(w, sn);
+  }
+
+  void load(BinaryReader& r) override {
+    pb_.load_state(r);
+    for (auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph}) *v = r.vec();
+    for (double* d : {&acc_c_, &acc_t_, &acc_nb_, &next_out_, &e_at_window_, &eI_at_window_}) *d = r.f64();
+    acc_n_ = static_cast<long>(r.u64());
+    k_ = static_cast<long>(r.u64());
+    snap_done_ = static_cast<int>(r.u64());
+    window_open_ = r.u64() != 0;
+    snapshots.clear();
+    for (auto n = r.u64(); n > 0; --n) snapshots.push_back(read_snapshot(r));
+    next_progress_ = std::floor(pb_.time() / T_ * 100.0) / 100.0;
+  }
+
+  double e_at_window() const { return e_at_window_; }
+  double eI_at_window() const { return eI_at_window_; }
+  double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+
+  std::vector<double> tt, fc, ft, fnb, gap, alph;  // force history (output-interval means)
+  std::vector<Snapshot> snapshots;
+
+private:
+  MpmProblem& pb_;
+  const double T_, out_dt_;
+  const int nsnap_;
+  const double t_window_;
+  const long max_steps_;
+  const ProgressFn& progress_;
+  const double xt0_;
+  double acc_c_ = 0.0, acc_t_ = 0.0, acc_nb_ = 0.0;
+  long acc_n_ = 0, k_ = 0;
+  double next_out_;
+  int snap_done_ = 0;
+  // released energy (total and mode I) when the steady window opens, for the steady-state mode mix
+  bool window_open_ = false;
+  double e_at_window_ = 0.0, eI_at_window_ = 0.0;
+  double next_progress_ = 0.0;
+  std::chrono::steady_clock::time_point t0_;
+};
+
 RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   ModelSpec spec;
   spec.name = "mpm_cutting";
@@ -287,19 +398,6 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   const double out_dt = v.at("output_interval") > 0.0 ? v.at("output_interval") : T / 400.0;
   const int nsnap = static_cast<int>(std::lround(v.at("snapshots")));
   const double dx = pb.config().grid.dx;
-
-  RunOutput out;
-  std::vector<double> tt, fc, ft, fnb, gap, alph;
-  double acc_c = 0.0, acc_t = 0.0, acc_nb = 0.0;
-  long acc_n = 0;
-  double next_out = out_dt;
-  int snap_done = 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  double next_progress = 0.0;
-  // released energy (total and mode I) when the steady window opens, for the steady-state mode mix
-  const double t_window = v.at("steady_start_fraction") * T;
-  bool window_open = false;
-  double e_at_window = 0.0, eI_at_window = 0.0;
   const double steps_needed = std::ceil(T / pb.dt());
   if (!(steps_needed <= kMaxSteps)) {
     std::ostringstream os;
@@ -307,53 +405,17 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
        << kMaxSteps << ")";
     throw std::runtime_error(os.str());
   }
-  const long max_steps = static_cast<long>(steps_needed) + 1;
-  for (long k = 0; k < max_steps && pb.time() < T - 0.5 * pb.dt(); ++k) {
-    pb.step();
-    // blow-up guard: a non-finite state or a particle off the grid stops the run (every 16 steps
-    // and at the last, so that the scan costs a fraction of a step)
-    if (k % 16 == 15 || k + 1 == max_steps || !std::isfinite(pb.contact_forces().total.x())) {
-      const std::string f = pb.fault();
-      if (!f.empty()) throw std::runtime_error("MPM run stopped: " + f);
-    }
-    if (!window_open && pb.time() >= t_window - 0.5 * pb.dt()) {
-      window_open = true;
-      e_at_window = pb.released_energy();
-      eI_at_window = e_at_window > 0.0 ? pb.mode1_fraction() * e_at_window : 0.0;
-    }
-    const ContactForces& f = pb.contact_forces();
-    acc_c += f.total.x();
-    acc_t += -f.total.y();
-    acc_nb += f.normal_below;
-    ++acc_n;
-    if (pb.time() >= next_out - 0.5 * pb.dt()) {
-      tt.push_back(pb.time());
-      fc.push_back(acc_c / static_cast<double>(acc_n));
-      ft.push_back(acc_t / static_cast<double>(acc_n));
-      fnb.push_back(acc_nb / static_cast<double>(acc_n));
-      gap.push_back(pb.crack_tip_x() - 0.5 * pb.config().crack.seg_len - (xt0 + pb.rigid_displacement().x()));
-      alph.push_back(pb.feedback_alpha());
-      acc_c = acc_t = acc_nb = 0.0;
-      acc_n = 0;
-      next_out += out_dt;
-    }
-    if (nsnap > 0 && pb.time() >= T * (snap_done + 1) / nsnap - 0.5 * pb.dt()) {
-      out.snapshots.push_back(take_snapshot(pb));
-      ++snap_done;
-    }
-    const double frac = pb.time() / T;
-    if (progress && frac >= next_progress) {
-      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::ostringstream msg;
-      msg.precision(3);
-      msg << "t = " << pb.time() * 1e3 << " ms, ETA " << (frac > 0 ? el * (1.0 - frac) / frac : 0.0) << " s";
-      progress(frac, msg.str());
-      next_progress += 0.01;
-    }
-  }
+  CuttingRun loop(pb, T, out_dt, nsnap, v.at("steady_start_fraction") * T, static_cast<long>(steps_needed) + 1,
+                  progress, xt0);
+  const DriveReport drive_report = drive(loop, "mpm_cutting");
   if (const std::string f = pb.fault(); !f.empty()) throw std::runtime_error("MPM run stopped: " + f);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall = loop.wall();
+  const double e_at_window = loop.e_at_window(), eI_at_window = loop.eI_at_window();
+  const std::vector<double>&tt = loop.tt, &fc = loop.fc, &ft = loop.ft, &fnb = loop.fnb, &gap = loop.gap;
 
+  RunOutput out;
+  out.snapshots = std::move(loop.snapshots);
+  out.notes = drive_notes(drive_report, "mpm_cutting");
   Table forces;
   forces.name = "forces";
   forces.add("t", "s", tt);
@@ -361,7 +423,7 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   forces.add("F_t", "N/m", ft);
   forces.add("F_nb", "N/m", fnb);
   forces.add("tip_gap", "m", gap);
-  forces.add("feedback_alpha", "1/s", alph);
+  forces.add("feedback_alpha", "1/s", loop.alph);
   out.tables.push_back(std::move(forces));
 
   const double t_steady = v.at("steady_start_fraction") * T;
@@ -530,6 +592,7 @@ SolverSpec cutting_solver_spec() {
                    {"tip_gap", "m", "crack-tip minus tool-tip x"},
                    {"feedback_alpha", "1/s", "grid kinetic-energy feedback damping coefficient"}}}};
   spec.run = run_cutting;
+  spec.checkpoints = true;
   return spec;
 }
 

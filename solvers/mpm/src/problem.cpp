@@ -166,6 +166,78 @@ std::string MpmProblem::fault() const {
   return {};
 }
 
+namespace {
+constexpr std::uint64_t kStateVersion = 1;
+}  // namespace
+
+void MpmProblem::save_state(BinaryWriter& w) const {
+  w.u64(kStateVersion);
+  w.u64(x_.size());
+  w.f64(time_);
+  w.u64(static_cast<std::uint64_t>(steps_));
+  w.u64(static_cast<std::uint64_t>(frozen_count_));
+  for (const auto* v : {&x_, &y_, &X0_, &Y0_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_,
+                        &bxx_, &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_}) {
+    w.vec(*v);
+  }
+  for (const auto* v : {&rigid_, &side_, &frozen_}) w.pods(*v);
+  w.pods(id_);
+  w.vec(crack_.xc);
+  w.pods(crack_.top);
+  w.pods(crack_.bot);
+  w.pods(crack_.free);
+  w.u64(crack_.state.size());
+  for (const auto& c : crack_.state) {
+    w.f64(c.dn_max);
+    w.f64(c.dt_max);
+    w.u64(c.failed ? 1 : 0);
+    w.f64(c.JI);
+    w.f64(c.JII);
+  }
+  w.pods(std::vector<Eigen::Vector2d>{forces_.total, forces_.below, rigid_disp_});
+  w.f64(forces_.normal_below);
+  w.f64(alpha_fb_);
+}
+
+void MpmProblem::load_state(BinaryReader& r) {
+  if (!setup_done_) setup();
+  if (r.u64() != kStateVersion) throw std::runtime_error("MPM state: another format version");
+  const std::size_t np = x_.size();
+  if (r.u64() != np) throw std::runtime_error("MPM state: another number of particles");
+  time_ = r.f64();
+  steps_ = static_cast<long>(r.u64());
+  frozen_count_ = static_cast<long>(r.u64());
+  auto sized = [&](auto v, std::size_t n, const char* what) {
+    if (v.size() != n) throw std::runtime_error(std::string("MPM state: wrong size of ") + what);
+    return v;
+  };
+  for (auto* v : {&x_, &y_, &X0_, &Y0_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_, &bxx_,
+                  &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_}) {
+    *v = sized(r.vec(), np, "a particle field");
+  }
+  for (auto* v : {&rigid_, &side_, &frozen_}) *v = sized(r.pods<std::uint8_t>(), np, "a particle flag");
+  id_ = sized(r.pods<std::size_t>(), np, "the particle ids");
+  const std::size_t ns = crack_.xc.size();
+  crack_.xc = sized(r.vec(), ns, "the crack segments");
+  crack_.top = sized(r.pods<Eigen::Vector2d>(), ns, "the crack surfaces");
+  crack_.bot = sized(r.pods<Eigen::Vector2d>(), ns, "the crack surfaces");
+  crack_.free = sized(r.pods<std::uint8_t>(), ns, "the crack segments");
+  if (r.u64() != ns) throw std::runtime_error("MPM state: wrong size of the cohesive states");
+  for (auto& c : crack_.state) {
+    c.dn_max = r.f64();
+    c.dt_max = r.f64();
+    c.failed = r.u64() != 0;
+    c.JI = r.f64();
+    c.JII = r.f64();
+  }
+  const auto vecs = sized(r.pods<Eigen::Vector2d>(), 3, "the forces");
+  forces_.total = vecs[0];
+  forces_.below = vecs[1];
+  rigid_disp_ = vecs[2];
+  forces_.normal_below = r.f64();
+  alpha_fb_ = r.f64();
+}
+
 bool MpmProblem::compute_shape(std::size_t p) {
   const auto& g = cfg_.grid;
   const bool crack = cfg_.crack.enabled;

@@ -503,6 +503,7 @@ SolverSpec detail::cutting_spec() {
                {"chip_segments", Dim::dimensionless, "peaks of the column-mean eps_p profile along the uncut layer after 2 t_u of cut (3-column mean, hysteresis 0.2 x mean)"},
                {"serration_pitch", Dim::length, "mean distance between eps_p peaks along the uncut layer (NaN below 2 peaks)"},
                {"serration_cv", Dim::dimensionless, "std / mean of the smoothed column-mean eps_p profile after 2 t_u of cut"}};
+  s.checkpoints = true;
   s.run = [](const Values& v, const ProgressFn& progress) {
     CuttingSetup c;
     c.particles_over_height = static_cast<int>(v.at("particles_over_height"));

@@ -100,6 +100,7 @@ struct SolverSpec {
   std::vector<ParamSpec> params;
   std::vector<OutputSpec> scalars;  // the scalar results a run reports
   std::vector<TableSpec> tables;    // the tables a run may return
+  bool checkpoints = false;         // runs checkpoint and resume through the shared driver
   std::function<RunOutput(const Values& params, const ProgressFn& progress)> run;
 
   const TableSpec* table(const std::string& table_name) const {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "cutbench/common/binary_io.hpp"
 #include "cutbench/mpm/cohesive.hpp"
 #include "cutbench/mpm/material.hpp"
 
@@ -152,6 +153,13 @@ public:
   // Empty while the state is sound; else what went wrong, naming the particle: a non-finite
   // position, velocity or stress, or a particle that left the grid (a blow-up).
   std::string fault() const;
+
+  // The whole state that carries from one step to the next (particles in their current order,
+  // crack surfaces and cohesive states, tool displacement, feedback damping, time, step count),
+  // for checkpoints: a problem built and set up from the same configuration and particles, then
+  // given load_state(), continues exactly as the saved one would have (bit for bit).
+  void save_state(BinaryWriter& w) const;
+  void load_state(BinaryReader& r);
 
   // Particle access (index order changes when particles are sorted; id() is the insertion index).
   std::size_t id(std::size_t p) const { return id_[p]; }

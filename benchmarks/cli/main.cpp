@@ -149,7 +149,7 @@ std::vector<fs::path> select_case_files(const std::vector<std::string>& ids, con
   std::vector<fs::path> files;
   for (const auto& id : ids) files.push_back(resolve_case(id, root));
   if (!paper.empty() || all) {
-    if (!paper.empty() && std::find(kPaperIds.begin(), kPaperIds.end(), paper) == kPaperIds.end()) {
+    if (!paper.empty() && !is_paper_id(paper)) {
       throw InputError("--paper", "unknown paper '" + paper + "'");
     }
     for (const auto& f : discover_case_files(root)) {

@@ -17,12 +17,32 @@
 
 namespace cutbench::framework {
 
-const std::vector<std::string> kPaperIds = {"nairn2015", "aghababaei2021", "figueiredo2024",
-                                            "afrasiabi2021", "kahwash2018"};
 
 const std::vector<std::string> kCheckKinds = {"verification", "reproduction", "validation", "consistency"};
 
 namespace fs = std::filesystem;
+
+const std::vector<std::string>& paper_ids() {
+  // a paper is a directory of reference_data/ with an inventory of its figures and tables; its
+  // cases live in benchmarks/<paper>/ (adding a paper needs no C++ edit)
+  static const std::vector<std::string> ids = [] {
+    std::vector<std::string> out;
+    const fs::path dir = source_root() / "reference_data";
+    if (fs::is_directory(dir)) {
+      for (const auto& e : fs::directory_iterator(dir)) {
+        if (e.is_directory() && fs::is_regular_file(e.path() / "inventory")) out.push_back(e.path().filename().string());
+      }
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }();
+  return ids;
+}
+
+bool is_paper_id(const std::string& id) {
+  const auto& ids = paper_ids();
+  return std::find(ids.begin(), ids.end(), id) != ids.end();
+}
 
 namespace {
 
@@ -422,7 +442,7 @@ std::set<std::string> all_series_names(const json& doc) {
 
 std::vector<fs::path> discover_case_files(const fs::path& root) {
   std::vector<fs::path> files;
-  for (const auto& paper : kPaperIds) {
+  for (const auto& paper : paper_ids()) {
     const fs::path dir = root / "benchmarks" / paper;
     if (!fs::is_directory(dir)) continue;
     for (const auto& e : fs::directory_iterator(dir)) {
@@ -444,7 +464,7 @@ fs::path resolve_case(const std::string& id_or_path, const fs::path& root) {
     throw InputError("case", "'" + id_or_path + "' is neither a case id like nairn2015/fig08 nor a .toml file");
   }
   const std::string paper = id_or_path.substr(0, slash);
-  if (std::find(kPaperIds.begin(), kPaperIds.end(), paper) == kPaperIds.end()) {
+  if (!is_paper_id(paper)) {
     throw InputError("case", "unknown paper '" + paper + "' in '" + id_or_path + "'");
   }
   fs::path file = root / "benchmarks" / (id_or_path + ".toml");
@@ -515,7 +535,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
   c.tiers = get_strings(doc, "tiers", "");
   c.assumptions = get_strings(doc, "assumptions", "");
 
-  if (std::find(kPaperIds.begin(), kPaperIds.end(), c.paper) == kPaperIds.end()) {
+  if (!is_paper_id(c.paper)) {
     throw InputError("paper", "unknown paper '" + c.paper + "'");
   }
   const std::string expected_id = file.parent_path().filename().string() + "/" + file.stem().string();

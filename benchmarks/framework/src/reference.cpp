@@ -64,12 +64,6 @@ const ReferenceColumn& ReferenceTable::column(const std::string& name) const {
                                             " (columns: " + known + ")");
 }
 
-bool ReferenceTable::has_column(const std::string& name) const {
-  for (const auto& c : columns) {
-    if (c.name == name) return true;
-  }
-  return false;
-}
 
 std::vector<std::size_t> ReferenceTable::select(const std::map<std::string, std::string>& where) const {
   std::vector<std::size_t> rows_out;

@@ -257,7 +257,7 @@ void write_manifest(const fs::path& dir) {
   const fs::path root = source_root();
   json m = {{"software", software_version()}, {"date", utc_now_iso()}, {"root", root.string()}};
   json papers = json::object();
-  for (const auto& p : kPaperIds) {
+  for (const auto& p : paper_ids()) {
     try {
       Inventory inv = load_inventory(root, p);
       json items = json::array();

@@ -13,8 +13,6 @@ using Eigen::Vector2d;
 
 double chip_thickness(double t1, double phi, double alpha) { return t1 * std::cos(phi - alpha) / std::sin(phi); }
 
-double merchant_shear_angle(double alpha, double mu) { return 0.25 * M_PI + 0.5 * (alpha - std::atan(mu)); }
-
 double merchant_force_bar(double phi, double alpha, double mu) {
   const double beta = std::atan(mu);
   return std::cos(beta - alpha) / (std::sin(phi) * std::cos(phi + beta - alpha));

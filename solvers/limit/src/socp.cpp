@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <type_traits>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
@@ -257,8 +258,15 @@ public:
   virtual VectorXd solve(const VectorXd& r) = 0;
 };
 
-class EigenLdlt final : public LdltBackend {
+// Eigen's simplicial LDLT and CHOLMOD's, behind one adapter.
+template <class Solver>
+class EigenFamilyLdlt final : public LdltBackend {
 public:
+  EigenFamilyLdlt() {
+    if constexpr (!std::is_same_v<Solver, Eigen::SimplicialLDLT<SpMat, Eigen::Lower>>) {
+      ldlt_.cholmod().print = 0;  // CHOLMOD: breakdowns are handled (retry), not printed
+    }
+  }
   void analyze(const SpMat& K) override { ldlt_.analyzePattern(K); }
   bool factorize(const SpMat& K) override {
     ldlt_.factorize(K);
@@ -267,26 +275,10 @@ public:
   VectorXd solve(const VectorXd& r) override { return ldlt_.solve(r); }
 
 private:
-  Eigen::SimplicialLDLT<SpMat, Eigen::Lower> ldlt_;
+  Solver ldlt_;
 };
-
-// Eigen 3.4's SparseRef (used by viewAsCholmod) trips a false -Wnull-dereference in GCC 12.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wnull-dereference"
-class CholmodLdlt final : public LdltBackend {
-public:
-  CholmodLdlt() { ldlt_.cholmod().print = 0; }  // breakdowns are handled (retry), not printed
-  void analyze(const SpMat& K) override { ldlt_.analyzePattern(K); }
-  bool factorize(const SpMat& K) override {
-    ldlt_.factorize(K);
-    return ldlt_.info() == Eigen::Success;
-  }
-  VectorXd solve(const VectorXd& r) override { return ldlt_.solve(r); }
-
-private:
-  Eigen::CholmodSimplicialLDLT<SpMat, Eigen::Lower> ldlt_;
-};
-#pragma GCC diagnostic pop
+using EigenLdlt = EigenFamilyLdlt<Eigen::SimplicialLDLT<SpMat, Eigen::Lower>>;
+using CholmodLdlt = EigenFamilyLdlt<Eigen::CholmodSimplicialLDLT<SpMat, Eigen::Lower>>;
 
 // Own up-looking LDLᵀ with dynamic regularisation of pivots with the wrong sign.
 class BuiltinLdl final : public LdltBackend {
@@ -319,7 +311,10 @@ public:
       std::fill(signs.begin(), signs.begin() + n_, static_cast<signed char>(1));
       ldlt_ = std::make_unique<BuiltinLdl>(std::move(signs), dyn_eps, dyn_delta);
     } else if (backend == KktBackend::cholmod) {
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnull-dereference"  // Eigen 3.4's SparseRef (viewAsCholmod), a false positive of GCC 12
       ldlt_ = std::make_unique<CholmodLdlt>();
+#pragma GCC diagnostic pop
     } else {
       ldlt_ = std::make_unique<EigenLdlt>();
     }

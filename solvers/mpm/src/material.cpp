@@ -13,14 +13,6 @@ double HyperelasticJ2::plastic_modulus(double E, double E_T) {
   return E * E_T / (E - E_T);
 }
 
-Eigen::Matrix3d kirchhoff_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& be_bar, double J) {
-  const double tr3 = be_bar.trace() / 3.0;
-  Eigen::Matrix3d tau = mat.G * (be_bar - tr3 * Eigen::Matrix3d::Identity());
-  const double p = 0.5 * mat.K * (J * J - 1.0);  // J U'(J) with U = K/2 ((J^2-1)/2 - ln J)
-  tau.diagonal().array() += p;
-  return tau;
-}
-
 namespace {
 // r^(1/3) for r near 1 (the volume change of one time step): two Newton steps from the linearised
 // root are accurate to round-off for |r - 1| < 0.05 and much cheaper than std::cbrt.

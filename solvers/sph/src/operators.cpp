@@ -55,7 +55,7 @@ void fill_pair_cache(const ParticleView& p, PairCache& cache) {
   double* const cey = cache.ey.data();
   // Per row: a branch-free compaction of the listed pairs inside the support (in a cut the
   // inside/outside outcome follows no pattern), then a SIMD loop over them with both kernel pieces
-  // computed and selected (the values of the branching CubicSpline2D::dwdr).
+  // computed and selected (CubicSpline2D::dwdr_in_support).
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) {
     const double xi = x[2 * i], yi = x[2 * i + 1];
@@ -80,8 +80,7 @@ void fill_pair_cache(const ParticleView& p, PairCache& cache) {
     for (std::size_t k = b; k < m; ++k) {
       const double dx = EX[k], dy = EY[k];
       const double rk = std::sqrt(dx * dx + dy * dy);
-      const double q = rk * inv_h, t = 2.0 - q;
-      const double d = q < 1.0 ? sig_h * (-3.0 * q + 2.25 * q * q) : -sig_h * 0.75 * t * t;
+      const double d = CubicSpline2D::dwdr_in_support(rk * inv_h, sig_h);
       R[k] = rk;
       D[k] = d;
       DR[k] = d / rk;

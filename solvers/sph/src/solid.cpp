@@ -504,13 +504,9 @@ void SolidSph::accelerations() {
         const double xx = fi.x - fj.x, xy = fi.y - fj.y;
         const double r2 = xx * xx + xy * xy;
         const double r = std::sqrt(r2);
-        // cubic spline (CubicSpline2D::value_dwdr): both pieces, then selected
-        const double q = r * inv_h, t = 2.0 - q;
-        const bool near = q < 1.0;
-        const double w_near = sig * (1.0 - 1.5 * q * q + 0.75 * q * q * q), w_far = sig * 0.25 * t * t * t;
-        const double d_near = sig_h * (-3.0 * q + 2.25 * q * q), d_far = -sig_h * 0.75 * t * t;
-        const double wij = near ? w_near : w_far;
-        const double dw = near ? d_near : d_far;
+        const double q = r * inv_h;
+        const double wij = CubicSpline2D::value_in_support(q, sig);
+        const double dw = CubicSpline2D::dwdr_in_support(q, sig_h);
         const double dwr = dw / r;
         const double gx = dwr * xx, gy = dwr * xy;
         const double rhobar = 0.5 * (fi.rho + fj.rho);

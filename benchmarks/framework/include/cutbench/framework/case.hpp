@@ -16,7 +16,9 @@ namespace cutbench::framework {
 
 using json = nlohmann::json;
 
-extern const std::vector<std::string> kPaperIds;
+// The papers of the suite: the directories of reference_data/ with an inventory, sorted.
+const std::vector<std::string>& paper_ids();
+bool is_paper_id(const std::string& id);
 
 // The numerical method a solver name belongs to ("mpm_cutting" -> "mpm", for every method in the
 // source tree, built or not), or "" for other names.

@@ -23,7 +23,6 @@ struct ReferenceTable {
   std::size_t rows = 0;
 
   const ReferenceColumn& column(const std::string& name) const;  // throws InputError
-  bool has_column(const std::string& name) const;
   // Rows where every `where` column equals the given text (numeric columns compare as numbers).
   std::vector<std::size_t> select(const std::map<std::string, std::string>& where) const;
   // SI value of one cell (unit converted). Throws InputError for text or empty cells.

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <vector>
 
+#include "cutbench/analytic/cutting.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/limit/limit_analysis.hpp"
 
@@ -87,7 +88,10 @@ struct CuttingResult {
 };
 
 double chip_thickness(double t1, double phi, double alpha);  // Eq. 2
-double merchant_shear_angle(double alpha, double mu);        // Eq. 1: π/4 + (α − β)/2
+// Eq. 1, Merchant's angle π/4 + (α − β)/2 with β = atan μ (the analytic library's, one formula).
+inline double merchant_shear_angle(double alpha, double mu) {
+  return analytic::merchant_shear_angle(alpha, analytic::friction_angle(mu));
+}
 // Merchant's cutting force F_c/(k t1 w) = cos(β − α) / (sin φ cos(φ + β − α)).
 double merchant_force_bar(double phi, double alpha, double mu);
 

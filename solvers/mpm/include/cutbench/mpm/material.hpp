@@ -41,9 +41,6 @@ Eigen::Matrix3d update_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& 
 double update_stress_plane_strain(const HyperelasticJ2& mat, const Eigen::Matrix2d& l, double J, double b[4],
                                   double& alpha, double tau[4]);
 
-// Kirchhoff stress of an elastic state (no return mapping).
-Eigen::Matrix3d kirchhoff_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& be_bar, double J);
-
 // Stored elastic energy per reference volume, W = G/2 (tr be_bar - 3) + K/2 ((J^2-1)/2 - ln J).
 double strain_energy_density(const HyperelasticJ2& mat, const Eigen::Matrix3d& be_bar, double J);
 

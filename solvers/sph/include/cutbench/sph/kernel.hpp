@@ -22,37 +22,25 @@ public:
   double sigma() const { return sigma_; }  // 10 / (7 pi h^2)
   double sigma_inv_h() const { return sigma_inv_h_; }
   double support() const { return 2.0 * h_; }
+  // The kernel inside its support, q = r/h in [0, 2): both pieces computed and one selected, with
+  // no branch, so that the pair loops vectorise. The one place the spline is written.
+  static double value_in_support(double q, double sigma) {
+    const double t = 2.0 - q;
+    const double near = sigma * (1.0 - 1.5 * q * q + 0.75 * q * q * q), far = sigma * 0.25 * t * t * t;
+    return q < 1.0 ? near : far;
+  }
+  static double dwdr_in_support(double q, double sigma_inv_h) {  // dW/dr (<= 0)
+    const double t = 2.0 - q;
+    const double near = sigma_inv_h * (-3.0 * q + 2.25 * q * q), far = -sigma_inv_h * 0.75 * t * t;
+    return q < 1.0 ? near : far;
+  }
   double value(double r) const {
     const double q = r * inv_h_;
-    if (q < 1.0) return sigma_ * (1.0 - 1.5 * q * q + 0.75 * q * q * q);
-    if (q < 2.0) {
-      const double t = 2.0 - q;
-      return sigma_ * 0.25 * t * t * t;
-    }
-    return 0.0;
+    return q < 2.0 ? value_in_support(q, sigma_) : 0.0;
   }
   double dwdr(double r) const {  // dW/dr (<= 0)
     const double q = r * inv_h_;
-    if (q < 1.0) return sigma_inv_h_ * (-3.0 * q + 2.25 * q * q);
-    if (q < 2.0) {
-      const double t = 2.0 - q;
-      return -sigma_inv_h_ * 0.75 * t * t;
-    }
-    return 0.0;
-  }
-  // W and dW/dr together (one branch; same values as value() and dwdr()).
-  void value_dwdr(double r, double& w, double& dw) const {
-    const double q = r * inv_h_;
-    if (q < 1.0) {
-      w = sigma_ * (1.0 - 1.5 * q * q + 0.75 * q * q * q);
-      dw = sigma_inv_h_ * (-3.0 * q + 2.25 * q * q);
-    } else if (q < 2.0) {
-      const double t = 2.0 - q;
-      w = sigma_ * 0.25 * t * t * t;
-      dw = -sigma_inv_h_ * 0.75 * t * t;
-    } else {
-      w = dw = 0.0;
-    }
+    return q < 2.0 ? dwdr_in_support(q, sigma_inv_h_) : 0.0;
   }
   // grad_i W_ij for x_ij = x_i - x_j at distance r = |x_ij| > 0.
   Vec2 gradient(const Vec2& xij, double r) const { return (dwdr(r) / r) * xij; }

@@ -1,3 +1,4 @@
+#include "cutbench/common/glossary.hpp"
 #include "cutbench/analytic/models.hpp"
 
 #include <cmath>
@@ -39,11 +40,11 @@ ParamSpec nonneg(std::string name, Dim dim, std::string desc, std::optional<doub
 ParamSpec any(std::string name, Dim dim, std::string desc, std::optional<double> def = std::nullopt) {
   return ranged(std::move(name), dim, std::move(desc), -kInf, true, kInf, true, def);
 }
-ParamSpec rake_param(std::optional<double> def = 0.0, std::string name = "rake") {
+ParamSpec rake_param(std::optional<double> def = 0.0, std::string name = glossary::kRakeAngle) {
   return ranged(std::move(name), Dim::angle, "tool rake angle", -kPi / 2, false, kPi / 2, false, def);
 }
 ParamSpec mu_param(std::optional<double> def = std::nullopt) {
-  return nonneg("mu", Dim::dimensionless, "Coulomb friction coefficient on the rake face (mu = tan beta)", def);
+  return nonneg(glossary::kFriction, Dim::dimensionless, "Coulomb friction coefficient on the rake face (mu = tan beta)", def);
 }
 // Shear-plane angle in (0, 90 deg).
 ParamSpec shear_angle_param(std::string name, std::string desc, std::optional<double> def = std::nullopt) {
@@ -279,7 +280,7 @@ ModelSpec atkins_model() {
       "reduces to Eq. 15 at mu = 0 and to Merchant at G_c = 0";
   m.source = "Nairn 2015 EFM Eqs. 13-15 (Eq. 14 as printed); shear angle EQUATIONS.md A6";
   m.params = {nonneg("G_c", Dim::energy_per_area, "toughness (fracture energy)"),
-              pos("sigma_y", Dim::stress, "tensile yield stress"), pos("h", Dim::length, "depth of cut"),
+              pos("sigma_y", Dim::stress, "tensile yield stress"), pos(glossary::kDepthOfCut, Dim::length, "depth of cut h"),
               rake_param(0.0), mu_param(0.0),
               nonneg("F_nb", Dim::force_per_width, "rubbing normal force per width", 0.0),
               pos("Y", Dim::dimensionless, "tau_y = sigma_y/Y: sqrt(3) von Mises (Eq. 2), 2 Tresca", std::sqrt(3.0)),
@@ -294,7 +295,7 @@ ModelSpec atkins_model() {
     AtkinsInput in;
     in.G_c = v.at("G_c");
     in.sigma_y = v.at("sigma_y");
-    in.h = v.at("h");
+    in.h = v.at(glossary::kDepthOfCut);
     in.rake = v.at("rake");
     in.mu = v.at("mu");
     in.F_nb = v.at("F_nb");
@@ -325,7 +326,7 @@ ModelSpec williams_model() {
               pos("sigma_y0", Dim::stress, "initial yield stress"),
               pos("E_prime", Dim::stress, "plane-strain modulus E/(1 - nu^2)"),
               nonneg("E_p", Dim::stress, "plastic (hardening) modulus, E_p = E E_T/(E - E_T); 0 = perfectly plastic", 0.0),
-              pos("h", Dim::length, "depth of cut (chip thickness)"), rake_param(0.0), mu_param(0.0),
+              pos(glossary::kDepthOfCut, Dim::length, "depth of cut h (chip thickness)"), rake_param(0.0), mu_param(0.0),
               nonneg("F_nb", Dim::force_per_width, "rubbing normal force per width", 0.0),
               pos("lambda", Dim::dimensionless, "crack-root rotation correction", 0.64)};
   m.outputs = {out("k0", Dim::dimensionless, "root curvature / yield curvature 2 sigma_y0/(h E')"),
@@ -341,7 +342,7 @@ ModelSpec williams_model() {
     in.sigma_y0 = v.at("sigma_y0");
     in.E_prime = v.at("E_prime");
     in.E_p = v.at("E_p");
-    in.h = v.at("h");
+    in.h = v.at(glossary::kDepthOfCut);
     in.rake = v.at("rake");
     in.mu = v.at("mu");
     in.F_nb = v.at("F_nb");
@@ -428,7 +429,7 @@ ModelSpec aghababaei_model() {
   m.params = {pos("K_IC", Dim::stress_intensity, "fracture toughness"),
               pos("tau_ys", Dim::stress, "shear strength"), rake_param(deg(45.0)), mu_param(0.3),
               pos("alpha_c", Dim::dimensionless, "contact length / chip thickness ratio", 1.2),
-              pos("w", Dim::length, "width of cut"), pos("d", Dim::length, "depth of cut")};
+              pos("w", Dim::length, "width of cut"), pos(glossary::kDepthOfCut, Dim::length, "depth of cut d")};
   m.outputs = {out("phi", Dim::angle, "Merchant shear angle pi/4 + lambda/2 - beta/2"),
                out("phi_deg", Dim::dimensionless, "shear angle in degrees"),
                out("F_fr", Dim::force, "fracture force (Eq. 2)"), out("F_pl", Dim::force, "plastic shearing force (Eq. 3)"),
@@ -437,7 +438,7 @@ ModelSpec aghababaei_model() {
                out("regime", Dim::dimensionless, "+1 fracture (d > d_c), -1 plastic shearing (d < d_c), 0 at d_c"),
                out("F_ratio", Dim::dimensionless, "F_fr/F_pl")};
   m.evaluate = [](const Values& v) {
-    const double lam = v.at("rake"), mu = v.at("mu"), a = v.at("alpha_c"), w = v.at("w"), d = v.at("d");
+    const double lam = v.at("rake"), mu = v.at("mu"), a = v.at("alpha_c"), w = v.at("w"), d = v.at(glossary::kDepthOfCut);
     const double phi = aghababaei_shear_angle(lam, mu);
     if (!(phi > 0.0 && phi < kPi / 2)) return not_applicable("Merchant shear angle outside (0, 90 deg)");
     if (!(std::cos(lam) > 0.0)) return not_applicable("rake angle must be below 90 deg");

@@ -849,7 +849,7 @@ int main(int argc, char** argv) {
   bool eval_json = false, eval_list = false;
   auto* eval = app.add_subcommand("eval", "Evaluate one analytical model (SI units in and out)");
   eval->add_option("model", eval_model, "Model name (see --list)");
-  eval->add_option("params", eval_args, "key=value (SI, or with a unit: h=2mm rake=30deg)");
+  eval->add_option("params", eval_args, "key=value (SI, or with a unit: t1=2mm rake=30deg)");
   eval->add_flag("--json", eval_json, "JSON output");
   eval->add_flag("--list", eval_list, "List every model with its parameters");
 

@@ -172,20 +172,20 @@ BOOST_AUTO_TEST_CASE(nairn_friction_both_directions) {
 
 BOOST_AUTO_TEST_CASE(williams_model_not_applicable_cases) {
   const auto& m = registry().get("williams_bending");
-  Values v = {{"G_c", 2000.0}, {"sigma_y0", 25e6}, {"E_prime", 1122.25e6}, {"h", 5e-3}, {"rake", deg(30)}, {"mu", 0.6}};
+  Values v = {{"G_c", 2000.0}, {"sigma_y0", 25e6}, {"E_prime", 1122.25e6}, {"t1", 5e-3}, {"rake", deg(30)}, {"mu", 0.6}};
   auto r = evaluate_model(m, v);
   BOOST_TEST(!r.applicable);
   BOOST_TEST(r.note == "no bending solution: Z > 0 (mu > tan(rake))");
   BOOST_TEST(std::isnan(r.outputs.at("F_c")));
   BOOST_TEST(std::isfinite(r.outputs.at("h_star")));
-  v = {{"G_c", 2000.0}, {"sigma_y0", 25e6}, {"E_prime", 1122.25e6}, {"h", 5e-3}};  // h* = 0.696 EPP
+  v = {{"G_c", 2000.0}, {"sigma_y0", 25e6}, {"E_prime", 1122.25e6}, {"t1", 5e-3}};  // h* = 0.696 EPP
   r = evaluate_model(m, v);
   BOOST_TEST(!r.applicable);
   BOOST_TEST(r.note.find("no root") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(atkins_model_matches_eq15) {
-  const auto o = eval("atkins_touching", {{"G_c", 2000.0}, {"sigma_y", 25e6}, {"h", 2e-3}, {"rake", deg(30)},
+  const auto o = eval("atkins_touching", {{"G_c", 2000.0}, {"sigma_y", 25e6}, {"t1", 2e-3}, {"rake", deg(30)},
                                           {"E_prime", 1122.25e6}});
   const double eq15 = 2000.0 + 2 * 25e6 * 2e-3 / std::sqrt(3.0) * (1 / std::cos(deg(30)) - std::tan(deg(30)));
   BOOST_TEST(o.at("F_c") == eq15, tt::tolerance(1e-13));
@@ -222,11 +222,11 @@ BOOST_AUTO_TEST_CASE(failure_and_envelope_models) {
 BOOST_AUTO_TEST_CASE(aghababaei_model_regimes) {
   // The d_c of PMMA (0.14 mm) with K_IC/tau implied by it; observed regimes of the text.
   // K_IC/tau_ys = 0.0427329 sqrt(m) (1.351 sqrt(mm)).
-  Values v = {{"K_IC", 1.0}, {"tau_ys", 1.0 / 0.0427329}, {"w", 4e-3}, {"d", 0.5e-3}};
+  Values v = {{"K_IC", 1.0}, {"tau_ys", 1.0 / 0.0427329}, {"w", 4e-3}, {"t1", 0.5e-3}};
   auto o = eval("aghababaei_transition", v);
   BOOST_TEST(o.at("d_c") == 0.14e-3, tt::tolerance(1e-3));
   BOOST_TEST(o.at("regime") == 1.0);  // PMMA at 0.5 mm: fracture (observed)
-  v["d"] = 0.1e-3;
+  v["t1"] = 0.1e-3;
   BOOST_TEST(eval("aghababaei_transition", v).at("regime") == -1.0);  // 0.1 mm: plastic (observed)
 }
 

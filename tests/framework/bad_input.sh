@@ -29,7 +29,7 @@ expect_cmd() {  # any other subcommand: exit 2 and a message naming the field
 }
 bad="$root/tests/data/bad_cases"
 expect "unknown key"          "colour"           run "$bad/nairn2015/unknown_key.toml"
-expect "wrong unit"           "params.h"         run "$bad/nairn2015/wrong_unit.toml"
+expect "wrong unit"           "params.t1"         run "$bad/nairn2015/wrong_unit.toml"
 expect "negative modulus"     "E_prime"          run "$bad/nairn2015/negative_modulus.toml"
 expect "rake >= 90 deg"       "rake"             run "$bad/nairn2015/rake_90.toml"
 expect "negative friction"    "mu"               run "$bad/nairn2015/negative_mu.toml"
@@ -47,9 +47,9 @@ fi
 expect "unknown case"         "case"             run nairn2015/fig99
 expect "unknown paper"        "--paper"          run --paper nobody2020
 expect_eval "eval unknown param"  "colour"  atkins_touching colour=3
-expect_eval "eval rake 90"        "rake"    atkins_touching G_c=2000 sigma_y=25MPa h=1mm rake=90deg
-expect_eval "eval negative mu"    "mu"      atkins_touching G_c=2000 sigma_y=25MPa h=1mm rake=30deg mu=-0.1
-expect_eval "eval wrong unit"     "h: wrong unit" atkins_touching G_c=2000 sigma_y=25MPa h=1MPa rake=30deg
+expect_eval "eval rake 90"        "rake"    atkins_touching G_c=2000 sigma_y=25MPa t1=1mm rake=90deg
+expect_eval "eval negative mu"    "mu"      atkins_touching G_c=2000 sigma_y=25MPa t1=1mm rake=30deg mu=-0.1
+expect_eval "eval wrong unit"     "t1: wrong unit" atkins_touching G_c=2000 sigma_y=25MPa t1=1MPa rake=30deg
 expect "run cache not writable"  "--run-cache"  run afrasiabi2021/fig03 --run-cache /proc/cutbench-no-such-dir
 expect "checkpoints without a run store" "--checkpoint-minutes" run aghababaei2021/fig04 --checkpoint-minutes 5
 expect "checkpoint interval negative"    "--checkpoint-minutes" run aghababaei2021/fig04 --checkpoint-minutes -1
@@ -79,13 +79,13 @@ if "$cutbench" describe mpm_cutting >/dev/null 2>&1; then
   expect "switch given a fraction"     "musl_recontact"   run "$(typed_case nairn2015 sw mpm mpm_cutting '{ musl_recontact = 0.5 }')"
   expect "switch given a string"       "musl_recontact"   run "$(typed_case nairn2015 sws mpm mpm_cutting '{ musl_recontact = "yes" }')"
   expect "count given as a string"     "particles_through_chip" run "$(typed_case nairn2015 cnt mpm mpm_cutting '{ particles_through_chip = "4.5" }')"
-  expect "option swept by from/to"     "sweep"            run "$(typed_case nairn2015 swp mpm mpm_cutting '{ h = "1 mm" }' 'sweep = { param = "contact_detection", from = 0, to = 2, n = 3 }')"
-  expect "option swept by a bad name"  "sweep.values"     run "$(typed_case nairn2015 swv mpm mpm_cutting '{ h = "1 mm" }' 'sweep = { param = "contact_detection", values = ["nodal_gap", "touching"] }')"
+  expect "option swept by from/to"     "sweep"            run "$(typed_case nairn2015 swp mpm mpm_cutting '{ t1 = "1 mm" }' 'sweep = { param = "contact_detection", from = 0, to = 2, n = 3 }')"
+  expect "option swept by a bad name"  "sweep.values"     run "$(typed_case nairn2015 swv mpm mpm_cutting '{ t1 = "1 mm" }' 'sweep = { param = "contact_detection", values = ["nodal_gap", "touching"] }')"
   expect "switch given a number (SPH)" "enhanced_thermal" run "$(typed_case afrasiabi2021 sph sph sph_cutting '{ enhanced_thermal = 0.5 }')"
   expect "option given a number (limit)" "steady_state"   run "$(typed_case figueiredo2024 lim limit limit_cutting '{ steady_state = 2 }')"
   expect "option given a number (EFG)" "criterion"        run "$(typed_case kahwash2018 efg efg efg_cutting '{ criterion = 2 }')"
   # selectors name only declared outputs and tables (see `cutbench describe SOLVER`)
-  expect "check of an undeclared output" "value.output" run "$(typed_case nairn2015 out mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[checks]]
+  expect "check of an undeclared output" "value.output" run "$(typed_case nairn2015 out mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[checks]]
 key = "k"
 kind = "verification"
 metric = "relative"
@@ -94,7 +94,7 @@ source = "test"
 reference = 1.0
 tolerance = 0.1
 value = { series = "s", output = "F_cut" }')")"
-  expect "check of an undeclared table" "value.table" run "$(typed_case nairn2015 tab mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[checks]]
+  expect "check of an undeclared table" "value.table" run "$(typed_case nairn2015 tab mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[checks]]
 key = "k"
 kind = "verification"
 metric = "relative"
@@ -103,7 +103,7 @@ source = "test"
 reference = 1.0
 tolerance = 0.1
 value = { series = "s", run = 0, table = "force", output = "F_c", row = -1 }')")"
-  expect "check of an undeclared column" "value.x" run "$(typed_case nairn2015 col mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[checks]]
+  expect "check of an undeclared column" "value.x" run "$(typed_case nairn2015 col mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[checks]]
 key = "k"
 kind = "verification"
 metric = "relative"
@@ -112,7 +112,7 @@ source = "test"
 reference = 1.0
 tolerance = 0.1
 value = { series = "s", run = 0, table = "forces", output = "F_c", x = "time", at = 0.001 }')")"
-  expect "check of a series not in the case" "value.series" run "$(typed_case nairn2015 ser mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[checks]]
+  expect "check of a series not in the case" "value.series" run "$(typed_case nairn2015 ser mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[checks]]
 key = "k"
 kind = "verification"
 metric = "relative"
@@ -121,7 +121,7 @@ source = "test"
 reference = 1.0
 tolerance = 0.1
 value = { series = "mpm", output = "F_c" }')")"
-  expect "plot line of an undeclared column" "lines[0].y" run "$(typed_case nairn2015 plt mpm mpm_cutting '{ h = "1 mm" }' "$(printf '%s' '[[plots]]
+  expect "plot line of an undeclared column" "lines[0].y" run "$(typed_case nairn2015 plt mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[plots]]
 name = "p"
 [[plots.lines]]
 series = "s"
@@ -130,6 +130,7 @@ table = "forces"
 x = "t"
 y = "Fc"')")"
   expect_cmd "describe an unknown solver" "name" describe mpm_cuting
+  expect "a retired name of a shared quantity" "glossary name" run "$(typed_case nairn2015 gl mpm mpm_cutting '{ h = "1 mm" }')"
   expect_eval "eval option by an unknown name" "criterion" failure_envelope criterion=tsai plane=s11_s22
   expect_eval "eval option by its old code"    "plane"     failure_envelope criterion=hashin plane=0
 else

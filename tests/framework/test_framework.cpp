@@ -14,6 +14,7 @@
 
 #include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
+#include "cutbench/common/glossary.hpp"
 #include "cutbench/framework/case.hpp"
 #include "cutbench/framework/reference.hpp"
 #include "cutbench/framework/run_cache.hpp"
@@ -999,4 +1000,22 @@ BOOST_AUTO_TEST_CASE(run_lock_takes_over_dead_holders_and_waits_for_live_ones) {
   release.join();
   BOOST_TEST(told.find("waiting") != std::string::npos);
   fs::remove_all(dir);
+}
+
+// One vocabulary: no model or solver names a shared quantity by a retired name. Beam models keep
+// their own symbols for the beam thickness (not the depth of cut): moment_curvature's h and
+// dcb_energy_release's d.
+BOOST_AUTO_TEST_CASE(shared_quantities_carry_their_glossary_names) {
+  const std::set<std::pair<std::string, std::string>> beam = {{"moment_curvature", "h"}, {"dcb_energy_release", "d"}};
+  auto check = [&](const std::string& owner, const std::vector<ParamSpec>& params) {
+    for (const auto& p : params) {
+      if (glossary::retired_names().count(p.name) && !beam.count({owner, p.name})) {
+        BOOST_ERROR(owner << " names a shared quantity '" << p.name << "' (glossary: "
+                          << glossary::retired_names().at(p.name) << ")");
+      }
+    }
+  };
+  for (const auto& m : ModelRegistry::instance().all()) check(m.name, m.params);
+  for (const auto& s : SolverRegistry::instance().all()) check(s.name, s.params);
+  BOOST_TEST(SolverRegistry::instance().all().size() + ModelRegistry::instance().all().size() > 20u);
 }

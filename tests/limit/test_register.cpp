@@ -52,7 +52,7 @@ BOOST_AUTO_TEST_CASE(steady_state_loop_with_contact_update_and_refinement) {
   const auto* cut = reg.find("limit_cutting");
   BOOST_REQUIRE(cut);
   const double alpha = 6.0 * M_PI / 180.0;
-  const auto o = cut->run({{"alpha", alpha}, {"n", 6.0}, {"steady_state", 2.0}, {"contact_search", 2.0},
+  const auto o = cut->run({{"rake", alpha}, {"n", 6.0}, {"steady_state", 2.0}, {"contact_search", 2.0},
                            {"adapt_steps", 3.0}, {"refine", 1.0}},
                           nullptr);
   const double phi_m = cutbench::limit::merchant_shear_angle(alpha, 0.0);

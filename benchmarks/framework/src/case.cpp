@@ -1,5 +1,6 @@
 #include "cutbench/framework/case.hpp"
 #include "cutbench/framework/methods.hpp"
+#include "cutbench/common/glossary.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -268,6 +269,18 @@ const ParamSpec* find_param(const std::vector<ParamSpec>& params, const std::str
   return nullptr;
 }
 
+// "unknown parameter", with the glossary name when `name` is a retired name of a shared quantity.
+std::string unknown_param_message(const std::vector<ParamSpec>& params, const std::string& name,
+                                  const std::string& model) {
+  const auto& retired = glossary::retired_names();
+  const auto it = retired.find(name);
+  if (it != retired.end() && find_param(params, it->second)) {
+    return "unknown parameter of '" + model + "': the glossary name of this quantity is '" + it->second +
+           "' (solvers/common/include/cutbench/common/glossary.hpp)";
+  }
+  return "unknown parameter of '" + model + "' (see `cutbench describe " + model + "`)";
+}
+
 // True when some registered solver belongs to this method ("mpm" -> "mpm_cutting", ...).
 bool solver_built(const std::string& method) {
   for (const auto& sv : SolverRegistry::instance().all()) {
@@ -421,7 +434,11 @@ void validate_selector(const json& sel, const std::string& field, const std::vec
     cols = series_columns(*s);
     owner = "series '" + name + "' (" + s->model + ")";
   }
-  for (const auto& [key, col] : {std::pair<std::string, std::string>{output_key, out}, {"x", x}}) {
+  std::vector<std::pair<std::string, std::string>> named = {{output_key, out}, {"x", x}};
+  if (sel.contains("at") && sel["at"].is_object()) {
+    for (const auto& [k, v] : sel["at"].items()) named.emplace_back("at." + k, k);
+  }
+  for (const auto& [key, col] : named) {
     if (col.empty()) continue;
     if (std::find(cols.begin(), cols.end(), col) == cols.end()) {
       throw InputError(field + "." + key, "'" + col + "' is not an output of " + owner + " (has: " + name_list(cols) +
@@ -629,7 +646,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       }
       for (const auto& [k, v] : params.items()) {
         const ParamSpec* p = find_param(*pspecs, k);
-        if (!p) throw InputError(sw + "params." + k, "unknown parameter of '" + ss.model + "'");
+        if (!p) throw InputError(sw + "params." + k, unknown_param_message(*pspecs, k, ss.model));
         ss.params[k] = param_quantity(v, *p, sw + "params." + k);
       }
       auto sweep_values = [&](const json& sweep, const ParamSpec& p, const std::string& f) {
@@ -660,7 +677,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
         SweepSpec sp;
         sp.param = get_string(sweep, "param", sw + "sweep.");
         const ParamSpec* p = find_param(*pspecs, sp.param);
-        if (!p) throw InputError(sw + "sweep.param", "unknown parameter '" + sp.param + "' of '" + ss.model + "'");
+        if (!p) throw InputError(sw + "sweep.param", "'" + sp.param + "': " + unknown_param_message(*pspecs, sp.param, ss.model));
         sp.values = sweep_values(sweep, *p, sw + "sweep");
         ss.sweep = sp;
       }
@@ -668,7 +685,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
         if (!ss.sweep) throw InputError(sw + "zip", "zip needs a sweep to zip with");
         for (const auto& [k, v] : s["zip"].items()) {
           const ParamSpec* p = find_param(*pspecs, k);
-          if (!p) throw InputError(sw + "zip." + k, "unknown parameter of '" + ss.model + "'");
+          if (!p) throw InputError(sw + "zip." + k, unknown_param_message(*pspecs, k, ss.model));
           std::vector<double> vals;
           if (!v.is_array()) throw InputError(sw + "zip." + k, "an array of values");
           for (const auto& x : v) vals.push_back(param_quantity(x, *p, sw + "zip." + k));
@@ -688,7 +705,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
         ReferenceTable t = load_reference(rs.file, sw + "rows.file");
         const json row_params = rows.value("params", json::object());
         for (const auto& [k, v] : row_params.items()) {
-          if (!find_param(*pspecs, k)) throw InputError(sw + "rows.params." + k, "unknown parameter of '" + ss.model + "'");
+          if (!find_param(*pspecs, k)) throw InputError(sw + "rows.params." + k, unknown_param_message(*pspecs, k, ss.model));
           if (!v.is_string()) throw InputError(sw + "rows.params." + k, "the name of a column of the reference table");
           const auto col = v.get<std::string>();
           const auto& column = t.column(col);
@@ -708,7 +725,7 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       }
       if (s.contains("link")) {
         for (const auto& [k, v] : s["link"].items()) {
-          if (!find_param(*pspecs, k)) throw InputError(sw + "link." + k, "unknown parameter of '" + ss.model + "'");
+          if (!find_param(*pspecs, k)) throw InputError(sw + "link." + k, unknown_param_message(*pspecs, k, ss.model));
           if (!v.is_object() || !v.contains("series") || !v.contains("output") || !v["series"].is_string() ||
               !v["output"].is_string()) {
             throw InputError(sw + "link." + k, "expected { series = \"name\", output = \"column\" }");
@@ -830,6 +847,10 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
         load_reference(root / "reference_data" / c.paper / cs.reference["file"].get<std::string>(), cw + "reference.file");
       }
       validate_selector(cs.value, cw + "value", c.series, series_names);
+      if (cs.reference.is_object() && (cs.reference.contains("series") || cs.reference.contains("ratio") ||
+                                       cs.reference.contains("difference") || cs.reference.contains("product"))) {
+        validate_selector(cs.reference, cw + "reference", c.series, series_names);
+      }
       c.checks.push_back(std::move(cs));
     }
   }

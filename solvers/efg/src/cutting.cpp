@@ -1,3 +1,4 @@
+#include "cutbench/common/glossary.hpp"
 #include "cutbench/efg/cutting.hpp"
 
 #include <Eigen/LU>
@@ -110,8 +111,8 @@ CuttingSnapshot read_cutting_snapshot(BinaryReader& r) {
 }  // namespace
 
 CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double)>& progress) {
-  if (!(s.depth > 0.0)) throw InputError("depth", "must be > 0");
-  if (s.depth >= s.work_height) throw InputError("depth", "must be smaller than the workpiece height");
+  if (!(s.depth > 0.0)) throw InputError(glossary::kDepthOfCut, "must be > 0");
+  if (s.depth >= s.work_height) throw InputError(glossary::kDepthOfCut, "must be smaller than the workpiece height");
   if (!(s.spacing > 0.0) || s.spacing > 0.5 * s.depth) throw InputError("spacing", "must be in (0, depth/2]");
   if (!(s.notch > 0.0) || s.notch >= s.work_length) throw InputError("notch", "must be in (0, work_length)");
   if (s.drop < 0.0 || s.drop >= 1.0) throw InputError("drop", "must be in [0, 1)");

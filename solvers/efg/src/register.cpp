@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "cutbench/common/glossary.hpp"
 #include "cutbench/common/solver.hpp"
 #include "cutbench/efg/register.hpp"
 #include "cutbench/efg/cutting.hpp"
@@ -172,7 +173,7 @@ void register_solvers(SolverRegistry& registry) {
                  p("Y_T", Dim::stress, "transverse tensile strength (Table 2)", 89.7216e6, 0, inf),
                  p("Y_C", Dim::stress, "transverse compressive strength (Table 2)", 148.33e6, 0, inf),
                  p("S_L", Dim::stress, "in-plane shear strength (Table 2)", 33.1e6, 0, inf),
-                 p("depth", Dim::length, "depth of cut (Table 3: 0.25 mm)", 0.25e-3, 0, inf),
+                 p(glossary::kDepthOfCut, Dim::length, "depth of cut (Table 3: 0.25 mm)", 0.25e-3, 0, inf),
                  p("rake", Dim::angle, "rake angle (Table 3: 0)", 0.0, -pi / 4, pi / 3),
                  p("work_length", Dim::length, "workpiece length (assumption)", 1.5e-3, 0, inf),
                  p("work_height", Dim::length, "workpiece height (assumption)", 0.75e-3, 0, inf),
@@ -271,7 +272,7 @@ void register_solvers(SolverRegistry& registry) {
     s.lamina.nu12 = s.material.nu12;
     s.criterion = static_cast<analytic::Criterion>(whole_number(v, "criterion"));
     s.theta = v.at("theta");
-    s.depth = v.at("depth");
+    s.depth = v.at(glossary::kDepthOfCut);
     s.rake = v.at("rake");
     s.work_length = v.at("work_length");
     s.work_height = v.at("work_height");

@@ -1,3 +1,4 @@
+#include "cutbench/common/glossary.hpp"
 #include "cutbench/limit/cutting.hpp"
 
 #include <algorithm>
@@ -22,7 +23,7 @@ double merchant_force_bar(double phi, double alpha, double mu) {
 LimitModel cutting_model(const CuttingSetup& c) {
   if (!(c.t1 > 0.0)) throw InputError("t1", "must be positive");
   if (!(c.phi > 0.0 && c.phi < 0.5 * M_PI)) throw InputError("phi", "shear angle must be in (0, 90) deg");
-  if (!(std::abs(c.alpha) < 0.5 * M_PI - c.phi + 0.5 * M_PI)) throw InputError("alpha", "rake angle out of range");
+  if (!(std::abs(c.alpha) < 0.5 * M_PI - c.phi + 0.5 * M_PI)) throw InputError(glossary::kRakeAngle, "rake angle out of range");
   if (!(c.contact_length > 0.0)) throw InputError("contact_length", "must be positive");
   if (c.n < 2) throw InputError("n", "need at least 2 cells across t1");
   const double t1 = c.t1, t2 = chip_thickness(t1, c.phi, c.alpha);

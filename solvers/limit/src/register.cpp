@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "cutbench/common/errors.hpp"
+#include "cutbench/common/glossary.hpp"
 #include "cutbench/limit/cutting.hpp"
 #include "cutbench/limit/limit_analysis.hpp"
 
@@ -256,7 +257,7 @@ SolverSpec cutting_spec() {
   phi.min_inclusive = phi.max_inclusive = false;
   ParamSpec l = param("contact_length", Dim::length, "tool-chip contact length l (default: t1/cos(alpha))");
   l.default_value = nan_value();
-  ParamSpec alpha = param("alpha", Dim::angle, "rake angle");
+  ParamSpec alpha = param(glossary::kRakeAngle, Dim::angle, "rake angle alpha");
   alpha.default_value = 0.0;
   alpha.min = -0.5;
   alpha.max = 0.7;
@@ -339,7 +340,7 @@ SolverSpec cutting_spec() {
                {"solve_time", Dim::time, "wall time of the solves"}};
   s.run = [spec = s](const Values& given, const ProgressFn& progress) {
     Values v = validated(spec, given);
-    const double k = v.at("k"), t1 = v.at("t1"), w = v.at("w"), a = v.at("alpha"), mu = v.at("mu");
+    const double k = v.at("k"), t1 = v.at("t1"), w = v.at("w"), a = v.at(glossary::kRakeAngle), mu = v.at(glossary::kFriction);
     CuttingSetup c;
     c.alpha = a;
     c.mu = mu;

@@ -8,6 +8,7 @@
 
 #include "cutbench/common/driver.hpp"
 #include "cutbench/common/errors.hpp"
+#include "cutbench/common/glossary.hpp"
 #include "cutbench/mpm/coverage.hpp"
 #include "cutbench/mpm/register.hpp"
 
@@ -114,9 +115,9 @@ constexpr double kDeg = M_PI / 180.0;
 
 std::vector<ParamSpec> cutting_params() {
   return {
-      param("h", Dim::length, "depth of cut", 0.9e-3, 0.0, kInf, false),
-      param("rake", Dim::angle, "tool rake angle alpha", 10.0 * kDeg, -30.0 * kDeg, 60.0 * kDeg),
-      param("clearance", Dim::angle, "tool clearance angle", 5.0 * kDeg, 1.0 * kDeg, 30.0 * kDeg),
+      param(glossary::kDepthOfCut, Dim::length, "depth of cut h", 0.9e-3, 0.0, kInf, false),
+      param(glossary::kRakeAngle, Dim::angle, "tool rake angle alpha", 10.0 * kDeg, -30.0 * kDeg, 60.0 * kDeg),
+      param(glossary::kClearanceAngle, Dim::angle, "tool clearance angle", 5.0 * kDeg, 1.0 * kDeg, 30.0 * kDeg),
       param("K", Dim::stress, "bulk modulus", 980e6, 0.0, kInf, false),
       param("G", Dim::stress, "shear modulus", 376e6, 0.0, kInf, false),
       param("rho", Dim::density, "density", 1000.0, 0.0, kInf, false),
@@ -126,7 +127,7 @@ std::vector<ParamSpec> cutting_params() {
       param("sigma_c", Dim::stress, "cohesive strength (modes I and II)", 40e6, 0.0, kInf, false),
       option_param("traction_law", "shape of the cohesive traction law",
                    {{"cubic", "the cubic law of Eq. 3"}, {"triangular", "linear softening"}}, "cubic"),
-      param("mu", Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0),
+      param(glossary::kFriction, Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0),
       param("pic_fraction", Dim::dimensionless, "PIC damping fraction (paper's 1 - beta): 1 = pure PIC", 1.0, 0.0, 1.0),
       integer_param("position_order", "order of the particle position update (Eq. 10)", 2.0, 0.0, 2.0),
       option_param("strain_update", "when the particle strain is updated",
@@ -145,7 +146,7 @@ std::vector<ParamSpec> cutting_params() {
       param("tool_height_factor", Dim::dimensionless, "tool height above the cut plane / h", 4.0, 1.0, 50.0),
       param("tool_length_factor", Dim::dimensionless, "tool length behind the tip / h", 4.0, 1.0, 50.0),
       param("chip_room_factor", Dim::dimensionless, "grid height above the cut plane / h", 12.0, 2.0, 100.0),
-      param("speed", Dim::velocity, "cutting speed", 2.0, 0.0, 1000.0, false),
+      param(glossary::kCuttingSpeed, Dim::velocity, "cutting speed V", 2.0, 0.0, 1000.0, false),
       param("ramp_fraction", Dim::dimensionless, "fraction of the run over which the speed ramps 0 -> V", 0.3, 0.0, 1.0),
       param("total_time", Dim::time, "simulated time", 8e-3, 0.0, kInf, false),
       param("output_interval", Dim::time, "force-history interval (0: total_time/400)", 0.0, 0.0, kInf),
@@ -173,9 +174,9 @@ std::vector<ParamSpec> cutting_params() {
 
 CuttingSetup cutting_setup_from(const Values& v) {
   CuttingSetup s;
-  s.h = v.at("h");
-  s.rake = v.at("rake");
-  s.clearance = v.at("clearance");
+  s.h = v.at(glossary::kDepthOfCut);
+  s.rake = v.at(glossary::kRakeAngle);
+  s.clearance = v.at(glossary::kClearanceAngle);
   s.material.K = v.at("K");
   s.material.G = v.at("G");
   s.material.rho = v.at("rho");
@@ -188,7 +189,7 @@ CuttingSetup cutting_setup_from(const Values& v) {
   const double law = v.at("traction_law");
   if (law != 0.0 && law != 1.0) throw InputError("traction_law", "must be 0 (cubic) or 1 (triangular)");
   s.law = law == 0.0 ? TractionLawType::cubic : TractionLawType::triangular;
-  s.mu = v.at("mu");
+  s.mu = v.at(glossary::kFriction);
   s.numerics.pic_fraction = v.at("pic_fraction");
   const double order = v.at("position_order");
   if (order != 0.0 && order != 1.0 && order != 2.0) throw InputError("position_order", "must be 0, 1 or 2");
@@ -210,7 +211,7 @@ CuttingSetup cutting_setup_from(const Values& v) {
   s.tool_height_factor = v.at("tool_height_factor");
   s.tool_length_factor = v.at("tool_length_factor");
   s.chip_room_factor = v.at("chip_room_factor");
-  s.speed = v.at("speed");
+  s.speed = v.at(glossary::kCuttingSpeed);
   s.ramp_fraction = v.at("ramp_fraction");
   s.total_time = v.at("total_time");
   s.feedback_gain = v.at("feedback_gain");

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <map>
 
+#include "cutbench/common/glossary.hpp"
 #include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/sph/lattice.hpp"
@@ -192,7 +193,7 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
 
 CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   if (c.particles_over_height < 4) throw InputError("particles_over_height", "needs at least 4");
-  if (!(c.uncut_thickness > 0.0 && c.uncut_thickness < c.height)) throw InputError("uncut_thickness", "must be in (0, height)");
+  if (!(c.uncut_thickness > 0.0 && c.uncut_thickness < c.height)) throw InputError(glossary::kDepthOfCut, "must be in (0, height)");
   if (!(c.cut_distance > 0.0 && c.cut_distance < c.length)) throw InputError("cut_distance", "must be in (0, length)");
   const double dx = c.height / static_cast<double>(c.particles_over_height - 1);
   const auto nx = static_cast<std::size_t>(std::lround(c.length / dx)) + 1;
@@ -431,12 +432,12 @@ SolverSpec detail::cutting_spec() {
       integer_param("particles_over_height", "particles over the workpiece height", def.particles_over_height, 4, 400),
       param("length", Dim::length, "workpiece length", def.length, 1e-6, 1.0),
       param("height", Dim::length, "workpiece height", def.height, 1e-6, 1.0),
-      param("uncut_thickness", Dim::length, "uncut chip thickness t_u", def.uncut_thickness, 1e-7, 1.0),
+      param(glossary::kDepthOfCut, Dim::length, "uncut chip thickness t_u", def.uncut_thickness, 1e-7, 1.0),
       param("cut_distance", Dim::length, "cut distance", def.cut_distance, 1e-7, 1.0),
-      param("speed", Dim::velocity, "cutting speed v_c", def.speed, 1e-3, 1e3),
-      param("friction", Dim::dimensionless, "Coulomb friction coefficient", def.friction, 0.0, 2.0),
-      param("rake", Dim::angle, "rake angle", def.rake, -60 * kDeg, 60 * kDeg),
-      param("clearance", Dim::angle, "clearance angle", def.clearance, 0.5 * kDeg, 45 * kDeg),
+      param(glossary::kCuttingSpeed, Dim::velocity, "cutting speed v_c", def.speed, 1e-3, 1e3),
+      param(glossary::kFriction, Dim::dimensionless, "Coulomb friction coefficient", def.friction, 0.0, 2.0),
+      param(glossary::kRakeAngle, Dim::angle, "rake angle", def.rake, -60 * kDeg, 60 * kDeg),
+      param(glossary::kClearanceAngle, Dim::angle, "clearance angle", def.clearance, 0.5 * kDeg, 45 * kDeg),
       param("edge_radius", Dim::length, "cutting-edge radius", def.edge_radius, 0.0, 1e-3),
       switch_param("enhanced_thermal", "true: FMFS + convection/radiation (paper); false: the reference model", true),
       switch_param("brookshaw_band", "true: Brookshaw on a 2h band at surfaces (energy-conserving); false: the paper's mix (Brookshaw on surface particles only)", true),
@@ -509,12 +510,12 @@ SolverSpec detail::cutting_spec() {
     c.particles_over_height = static_cast<int>(v.at("particles_over_height"));
     c.length = v.at("length");
     c.height = v.at("height");
-    c.uncut_thickness = v.at("uncut_thickness");
+    c.uncut_thickness = v.at(glossary::kDepthOfCut);
     c.cut_distance = v.at("cut_distance");
-    c.speed = v.at("speed");
-    c.friction = v.at("friction");
-    c.rake = v.at("rake");
-    c.clearance = v.at("clearance");
+    c.speed = v.at(glossary::kCuttingSpeed);
+    c.friction = v.at(glossary::kFriction);
+    c.rake = v.at(glossary::kRakeAngle);
+    c.clearance = v.at(glossary::kClearanceAngle);
     c.edge_radius = v.at("edge_radius");
     c.enhanced_thermal = v.at("enhanced_thermal") != 0.0;
     c.brookshaw_band = v.at("brookshaw_band") != 0.0;

@@ -1,3 +1,4 @@
+#include "cutbench/common/driver.hpp"
 #include "cutbench/common/glossary.hpp"
 #include "cutbench/efg/cutting.hpp"
 
@@ -222,9 +223,8 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   bool path = false, sep = false;
   std::size_t ncoll_prev = 0;
   DropDetector detector(s.drop, s.drop_window, r.dt_initial);
-  // Checkpoints (cutbench run --run-cache): the solver state and every accumulator of this loop.
-  const CheckpointSpec* ck = active_checkpoint();
-  CheckpointClock ck_clock(ck);
+  // The loop through the shared driver (checkpoints of cutbench run --run-cache): the solver state
+  // and every accumulator of this loop are the run's state.
   auto loop_state = [&](auto&& f64, auto&& vec) {
     for (double* p : {&acc.x(), &acc.y(), &acc_all.x(), &acc_all.y(), &tacc, &tacc_all, &cut_tip, &next_snap,
                       &r.t_contact, &r.dt_min, &r.Fc_peak, &r.travel_first_failure, &r.Fc_first_failure,
@@ -232,19 +232,32 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
       f64(*p);
     for (std::vector<double>* v : {&r.t, &r.travel, &r.Fc, &r.Ft, &r.dt}) vec(*v);
   };
-  if (ck && read_checkpoint(*ck, [&](BinaryReader& rd) {
-        solver.load_state(rd);
-        detector.load(rd);
-        loop_state([&](double& x) { x = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
-        nacc = static_cast<int>(rd.u64());
-        path = rd.u64() != 0;
-        sep = rd.u64() != 0;
-        ncoll_prev = static_cast<std::size_t>(rd.u64());
-        cand.clear();
-        for (auto k = rd.u64(); k > 0; --k) cand.push_back(read_cutting_snapshot(rd));
-      }))
-    r.resumed_from_step = solver.steps();
-  while (solver.time() < t_end) {
+  bool stopped = false;
+  CallbackRun loop;
+  loop.finished = [&] { return stopped || !(solver.time() < t_end); };
+  loop.count = [&] { return static_cast<std::size_t>(solver.steps()); };
+  loop.saver = [&](BinaryWriter& w) {
+    solver.save_state(w);
+    detector.save(w);
+    loop_state([&](double& x) { w.f64(x); }, [&](std::vector<double>& v) { w.vec(v); });
+    for (std::uint64_t u : {static_cast<std::uint64_t>(nacc), static_cast<std::uint64_t>(path),
+                            static_cast<std::uint64_t>(sep), static_cast<std::uint64_t>(ncoll_prev)})
+      w.u64(u);
+    w.u64(cand.size());
+    for (const auto& sn : cand) write_cutting_snapshot(w, sn);
+  };
+  loop.loader = [&](BinaryReader& rd) {
+    solver.load_state(rd);
+    detector.load(rd);
+    loop_state([&](double& x) { x = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
+    nacc = static_cast<int>(rd.u64());
+    path = rd.u64() != 0;
+    sep = rd.u64() != 0;
+    ncoll_prev = static_cast<std::size_t>(rd.u64());
+    cand.clear();
+    for (auto k = rd.u64(); k > 0; --k) cand.push_back(read_cutting_snapshot(rd));
+  };
+  loop.step = [&] {
     const double dt = solver.step();
     r.dt_min = std::min(r.dt_min, dt);
     if (r.t_contact < 0 && solver.contact_count() > 0) r.t_contact = solver.time();
@@ -323,29 +336,12 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
         next_snap = trav + 0.25 * hx;
       }
     }
-    if (r.t_complete >= 0.0) break;
-    if (dt < 1e-3 * r.dt_initial) break;  // collapsed nodes: run broken
-    if (ck_clock.due(static_cast<std::size_t>(solver.steps())) && solver.time() < t_end) {
-      try {  // a checkpoint that cannot be written must not end the run it is there to protect
-        write_checkpoint(*ck, [&](BinaryWriter& w) {
-          solver.save_state(w);
-          detector.save(w);
-          loop_state([&](double& x) { w.f64(x); }, [&](std::vector<double>& v) { w.vec(v); });
-          for (std::uint64_t u : {static_cast<std::uint64_t>(nacc), static_cast<std::uint64_t>(path),
-                                  static_cast<std::uint64_t>(sep), static_cast<std::uint64_t>(ncoll_prev)})
-            w.u64(u);
-          w.u64(cand.size());
-          for (const auto& sn : cand) write_cutting_snapshot(w, sn);
-        });
-        ++r.checkpoints_written;
-      } catch (const std::exception& e) {
-        r.checkpoint_error = e.what();
-      }
-      ck_clock.written();
-      if (ck->stop_after_write)
-        throw CheckpointStop("efg_cutting: stopped after a checkpoint at step " + std::to_string(solver.steps()));
-    }
-  }
+    if (r.t_complete >= 0.0 || dt < 1e-3 * r.dt_initial) stopped = true;  // completed; collapsed nodes: broken
+  };
+  const DriveReport drive_report = drive(loop, "efg_cutting");
+  r.resumed_from_step = static_cast<long>(drive_report.resumed_from_step);
+  r.checkpoints_written = drive_report.checkpoints_written;
+  r.checkpoint_error = drive_report.checkpoint_error;
   r.steps = solver.steps();
   r.travel_first_drop = detector.first_drop();
   if (tacc_all > 0.0) {

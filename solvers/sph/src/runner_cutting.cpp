@@ -12,6 +12,7 @@
 #include <cmath>
 #include <map>
 
+#include "cutbench/common/driver.hpp"
 #include "cutbench/common/glossary.hpp"
 #include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
@@ -260,9 +261,8 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   int rake_avg_n = 0;
   const int n_snap = std::max(1, c.snapshots);
   int snap_taken = 0;
-  // Checkpoints (cutbench run --run-cache): the solver state and every accumulator of this loop.
-  const CheckpointSpec* ck = active_checkpoint();
-  CheckpointClock ck_clock(ck);
+  // The loop through the shared driver (checkpoints of cutbench run --run-cache): the solver state
+  // and every accumulator of this loop are the run's state.
   auto loop_state = [&](auto&& f64, auto&& vec) {
     for (double* d : {&acc_fc, &acc_ft, &acc_t, &t_next, &steady_fc, &steady_ft, &steady_t, &rake_ft, &rake_fn,
                       &rake_slip, &rake_count, &rake_avg_sum, &zone_force[0].x(), &zone_force[0].y(),
@@ -270,18 +270,32 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
       f64(*d);
     for (std::vector<double>* v : {&r.t, &r.cut, &r.fc, &r.ft}) vec(*v);
   };
-  if (ck && read_checkpoint(*ck, [&](BinaryReader& rd) {
-        s.load_state(rd);
-        loop_state([&](double& d) { d = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
-        rake_avg_n = static_cast<int>(rd.u64());
-        snap_taken = static_cast<int>(rd.u64());
-        r.snapshots.clear();
-        for (auto k = rd.u64(); k > 0; --k) r.snapshots.push_back(read_snapshot(rd));
-      }))
-    r.resumed_from_step = s.steps();
-  while (s.time() < t_end) {
+  bool stopped = false;
+  CallbackRun loop;
+  loop.finished = [&] { return stopped || !(s.time() < t_end); };
+  loop.count = [&] { return static_cast<std::size_t>(s.steps()); };
+  loop.saver = [&](BinaryWriter& w) {
+    s.save_state(w);
+    loop_state([&](double& d) { w.f64(d); }, [&](std::vector<double>& v) { w.vec(v); });
+    w.u64(static_cast<std::uint64_t>(rake_avg_n));
+    w.u64(static_cast<std::uint64_t>(snap_taken));
+    w.u64(r.snapshots.size());
+    for (const auto& sn : r.snapshots) write_snapshot(w, sn);
+  };
+  loop.loader = [&](BinaryReader& rd) {
+    s.load_state(rd);
+    loop_state([&](double& d) { d = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
+    rake_avg_n = static_cast<int>(rd.u64());
+    snap_taken = static_cast<int>(rd.u64());
+    r.snapshots.clear();
+    for (auto k = rd.u64(); k > 0; --k) r.snapshots.push_back(read_snapshot(rd));
+  };
+  loop.step = [&] {
     const double dt = std::min(s.stable_time_step(), t_end - s.time());
-    if (!(dt > 0.0)) break;
+    if (!(dt > 0.0)) {
+      stopped = true;
+      return;
+    }
     s.step(dt);
     const double fc = s.tool_force().x(), ft = s.tool_force().y();  // force on the tool
     // tool moves in -x: the cutting force resists it (+x on the tool); thrust pushes it up (+y)
@@ -325,24 +339,11 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
         progress(s.time() / t_end, "cut " + std::to_string(s.time() * c.speed * 1e3) + " mm, step " +
                                        std::to_string(s.steps()));
     }
-    if (ck_clock.due(s.steps()) && s.time() < t_end) {
-      try {  // a checkpoint that cannot be written must not end the run it is there to protect
-        write_checkpoint(*ck, [&](BinaryWriter& w) {
-          s.save_state(w);
-          loop_state([&](double& d) { w.f64(d); }, [&](std::vector<double>& v) { w.vec(v); });
-          w.u64(static_cast<std::uint64_t>(rake_avg_n));
-          w.u64(static_cast<std::uint64_t>(snap_taken));
-          w.u64(r.snapshots.size());
-          for (const auto& sn : r.snapshots) write_snapshot(w, sn);
-        });
-        ++r.checkpoints_written;
-      } catch (const std::exception& e) {
-        r.checkpoint_error = e.what();
-      }
-      ck_clock.written();
-      if (ck->stop_after_write) throw CheckpointStop("sph_cutting: stopped after a checkpoint at step " + std::to_string(s.steps()));
-    }
-  }
+  };
+  const DriveReport drive_report = drive(loop, "sph_cutting");
+  r.resumed_from_step = drive_report.resumed_from_step;
+  r.checkpoints_written = drive_report.checkpoints_written;
+  r.checkpoint_error = drive_report.checkpoint_error;
   r.steps = s.steps();
   r.fc_mean = steady_t > 0.0 ? steady_fc / steady_t : nan_value();
   r.ft_mean = steady_t > 0.0 ? steady_ft / steady_t : nan_value();

@@ -47,13 +47,8 @@ std::vector<ParamSpec> material_params() {
           p("rho", Dim::density, "density (Table 2's 1.58 read as g/cm^3)", 1580.0, 0, inf)};
 }
 
-}  // namespace
-
-void register_solvers(SolverRegistry& registry) {
-  if (registry.find("efg_cantilever")) return;  // idempotent
+SolverSpec cantilever_spec() {
   const double inf = HUGE_VAL;
-  const double pi = std::acos(-1.0);
-
   SolverSpec cant;
   cant.name = "efg_cantilever";
   cant.description = "EFG static Timoshenko cantilever (plane stress, isotropic): tip deflection and error norms";
@@ -89,8 +84,12 @@ void register_solvers(SolverRegistry& registry) {
     if (progress) progress(1.0, "done");
     return out;
   };
-  registry.add(cant);
+  return cant;
+}
 
+SolverSpec wave_spec() {
+  const double inf = HUGE_VAL;
+  const double pi = std::acos(-1.0);
   SolverSpec wave;
   wave.name = "efg_wave";
   wave.description = "EFG explicit plane wave in a laterally constrained bar: measured vs sqrt(Qbar11/rho)";
@@ -130,8 +129,11 @@ void register_solvers(SolverRegistry& registry) {
     if (progress) progress(1.0, "done");
     return out;
   };
-  registry.add(wave);
+  return wave;
+}
 
+SolverSpec patch_spec() {
+  const double pi = std::acos(-1.0);
   SolverSpec patch;
   patch.name = "efg_patch";
   patch.description = "EFG patch tests: homogeneous finite deformation (TL) and static linear patch";
@@ -159,13 +161,13 @@ void register_solvers(SolverRegistry& registry) {
                         "background cells (MLS shape functions are rational).");
     return out;
   };
-  registry.add(patch);
+  return patch;
+}
 
-  SolverSpec cut;
-  cut.name = "efg_cutting";
-  cut.description = "Explicit EFG orthogonal cutting of UD-GFRP (Kahwash 2018): F_c, F_t per unit width to chip completion";
-  cut.source = "Kahwash et al. 2018 sections 2-3 and 5, Tables 2-3";
-  cut.params = material_params();
+std::vector<ParamSpec> cutting_params() {
+  const double inf = HUGE_VAL;
+  const double pi = std::acos(-1.0);
+  std::vector<ParamSpec> params = material_params();
   for (auto q : {p("theta", Dim::angle, "fibre angle: fibres along (cos, sin) with the tool moving +x", pi / 6, 0, pi),
                  analytic::criterion_param("larc02"),
                  p("X_T", Dim::stress, "fibre tensile strength (Table 2)", 697.8e6, 0, inf),
@@ -174,18 +176,18 @@ void register_solvers(SolverRegistry& registry) {
                  p("Y_C", Dim::stress, "transverse compressive strength (Table 2)", 148.33e6, 0, inf),
                  p("S_L", Dim::stress, "in-plane shear strength (Table 2)", 33.1e6, 0, inf),
                  p(glossary::kDepthOfCut, Dim::length, "depth of cut (Table 3: 0.25 mm)", 0.25e-3, 0, inf),
-                 p("rake", Dim::angle, "rake angle (Table 3: 0)", 0.0, -pi / 4, pi / 3),
+                 p(glossary::kRakeAngle, Dim::angle, "rake angle (Table 3: 0)", 0.0, -pi / 4, pi / 3),
                  p("work_length", Dim::length, "workpiece length (assumption)", 1.5e-3, 0, inf),
                  p("work_height", Dim::length, "workpiece height (assumption)", 0.75e-3, 0, inf),
                  p("notch", Dim::length, "already-cut length: the cut starts inside the workpiece", 0.25e-3, 0, inf),
                  p("spacing", Dim::length, "nodal spacing along x", 0.05e-3, 0, inf),
                  p("support_factor", Dim::dimensionless, "domain of influence / nodal spacing", 2.0, 1.2, 4),
-                 p("speed", Dim::velocity, "cutting speed (Table 3: 3800 mm/min)", 3800e-3 / 60.0, 0, inf),
+                 p(glossary::kCuttingSpeed, Dim::velocity, "cutting speed (Table 3: 3800 mm/min)", 3800e-3 / 60.0, 0, inf),
                  p("time_scale", Dim::dimensionless, "tool speed multiplier (time scaling)", 50, 1, 1e4),
                  p("travel", Dim::length, "maximum tool travel after first contact", 0.3e-3, 0, inf),
                  p("ramp_transits", Dim::dimensionless, "tool speed ramp, in wave transits of the workpiece height", 50, 0, 1e4),
-                 p("mu", Dim::dimensionless, "rake-face friction coefficient (assumption)", 0.3, 0, 2),
-                 p("clearance", Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
+                 p(glossary::kFriction, Dim::dimensionless, "rake-face friction coefficient (assumption)", 0.3, 0, 2),
+                 p(glossary::kClearanceAngle, Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
                  p("edge_radius", Dim::length, "cutting-edge radius (assumption, not in the paper; 0: sharp)", 0.0, 0, inf),
                  p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1),
                  option_param("degradation", "stiffness degradation of failed material",
@@ -207,16 +209,13 @@ void register_solvers(SolverRegistry& registry) {
                               "eroded_path"),
                  p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0),
                  integer_param("snapshots", "damage snapshots kept (k/n of the run)", 3, 0, 20)}) {
-    cut.params.push_back(q);
+    params.push_back(q);
   }
-  cut.tables = {{"forces",
-                 "tool force history",
-                 {{"t", "s", "time"},
-                  {"travel", "m", "tool travel after first contact"},
-                  {"F_c", "N/m", "cutting force per unit width"},
-                  {"F_t", "N/m", "thrust force per unit width"},
-                  {"dt", "s", "critical time step (Eq. 56)"}}}};
-  cut.scalars = {{"F_c", Dim::force_per_width, "mean cutting force from first contact to the end (chip completion)"},
+  return params;
+}
+
+std::vector<OutputSpec> cutting_scalars() {
+  return {{"F_c", Dim::force_per_width, "mean cutting force from first contact to the end (chip completion)"},
                  {"F_t", Dim::force_per_width, "mean thrust force from first contact to the end"},
                  {"F_c_peak", Dim::force_per_width, "largest window-mean cutting force"},
                  {"t_contact", Dim::time, "first tool contact"},
@@ -258,128 +257,159 @@ void register_solvers(SolverRegistry& registry) {
                  {"rake_used", Dim::angle, "rake angle used"},
                  {"speed_used", Dim::velocity, "paper cutting speed (before time scaling)"},
                  {"wave_speed", Dim::velocity, "Eq 55 c_max = sqrt(C11/rho)"}};
+}
+
+CuttingSetup cutting_setup_from(const Values& v) {
+  CuttingSetup s;
+  s.material = gfrp_of(v);
+  s.lamina.X_T = v.at("X_T");
+  s.lamina.X_C = v.at("X_C");
+  s.lamina.Y_T = v.at("Y_T");
+  s.lamina.Y_C = v.at("Y_C");
+  s.lamina.S_L = v.at("S_L");
+  s.lamina.E1 = s.material.E1;
+  s.lamina.G12 = s.material.G12;
+  s.lamina.nu12 = s.material.nu12;
+  s.criterion = static_cast<analytic::Criterion>(whole_number(v, "criterion"));
+  s.theta = v.at("theta");
+  s.depth = v.at(glossary::kDepthOfCut);
+  s.rake = v.at(glossary::kRakeAngle);
+  s.work_length = v.at("work_length");
+  s.work_height = v.at("work_height");
+  s.notch = v.at("notch");
+  s.spacing = v.at("spacing");
+  s.support_factor = v.at("support_factor");
+  s.speed = v.at(glossary::kCuttingSpeed);
+  s.time_scale = v.at("time_scale");
+  s.travel = v.at("travel");
+  s.ramp_transits = v.at("ramp_transits");
+  s.mu = v.at(glossary::kFriction);
+  s.clearance = v.at(glossary::kClearanceAngle);
+  s.residual = v.at("residual");
+  s.edge_radius = v.at("edge_radius");
+  s.degradation = static_cast<Degradation>(whole_number(v, "degradation"));
+  s.erosion = static_cast<Erosion>(whole_number(v, "erosion"));
+  s.visibility = v.at("visibility") > 0.5;
+  s.collapse_ratio = v.at("collapse_ratio");
+  s.drop = v.at("drop");
+  s.drop_window = whole_number(v, "drop_window");
+  s.min_travel = v.at("min_travel");
+  s.completion_guard = static_cast<CompletionGuard>(whole_number(v, "completion_guard"));
+  s.cfl = v.at("cfl");
+  s.snapshots = whole_number(v, "snapshots");
+  return s;
+}
+
+RunOutput cutting_output(const CuttingSetup& s, const CuttingResult& r, double wall) {
+  RunOutput out;
+  if (!r.checkpoint_error.empty())
+    out.notes.push_back("efg_cutting: a checkpoint could not be written (" + r.checkpoint_error + "); the run went on");
+  if (r.resumed_from_step > 0)
+    out.notes.push_back("efg_cutting: resumed from a checkpoint at step " + std::to_string(r.resumed_from_step) +
+                        " (the result equals an uninterrupted run with the same thread count; node_steps_per_s "
+                        "counts the steps since the resume)");
+  Table t;
+  t.name = "forces";
+  t.add("t", "s", r.t);
+  t.add("travel", "m", r.travel);
+  t.add("F_c", "N/m", r.Fc);
+  t.add("F_t", "N/m", r.Ft);
+  t.add("dt", "s", r.dt);
+  out.tables.push_back(t);
+  for (const auto& sn : r.snapshots) {
+    Snapshot snap;
+    snap.time = sn.t;
+    snap.x = sn.x;
+    snap.y = sn.y;
+    snap.add("fibre_damage", "1", sn.fibre);
+    snap.add("matrix_damage", "1", sn.matrix);
+    out.snapshots.push_back(snap);
+  }
+  const double ng = static_cast<double>(r.gauss);
+  auto frac = [](std::size_t a, std::size_t b) { return b > 0 ? static_cast<double>(a) / b : 0.0; };
+  const Orthotropic& m = s.material;
+  out.scalars = {{"F_c", r.Fc_mean},
+                 {"F_t", r.Ft_mean},
+                 {"F_c_peak", r.Fc_peak},
+                 {"t_contact", r.t_contact},
+                 {"t_complete", r.t_complete},
+                 {"travel_complete", r.travel_complete},
+                 {"chip_complete", r.t_complete >= 0.0 ? 1.0 : 0.0},
+                 {"travel_path", r.travel_path},
+                 {"travel_first_drop", r.travel_first_drop},
+                 {"travel_separated", r.travel_separated},
+                 {"travel_first_failure", r.travel_first_failure},
+                 {"F_c_first_failure", r.Fc_first_failure},
+                 {"dt_drop_ratio", r.dt_drop_ratio},
+                 {"dt_min_ratio", r.dt_min / r.dt_initial},
+                 {"fibre_damaged_fraction", static_cast<double>(r.fibre_damaged) / ng},
+                 {"matrix_damaged_fraction", static_cast<double>(r.matrix_damaged) / ng},
+                 {"chip_fibre_fraction", frac(r.chip_fibre, r.chip_gauss)},
+                 {"chip_matrix_fraction", frac(r.chip_matrix, r.chip_gauss)},
+                 {"sub_fibre_fraction", frac(r.sub_fibre, r.sub_gauss)},
+                 {"sub_matrix_fraction", frac(r.sub_matrix, r.sub_gauss)},
+                 {"eroded", static_cast<double>(r.eroded)},
+                 {"released", static_cast<double>(r.released)},
+                 {"collapse_eroded", static_cast<double>(r.collapse_eroded)},
+                 {"nodes", static_cast<double>(r.nodes)},
+                 {"gauss_points", ng},
+                 {"steps", static_cast<double>(r.steps)},
+                 {"node_steps_per_s", static_cast<double>(r.nodes) * static_cast<double>(r.steps - r.resumed_from_step) / wall},
+                 {"E1_used", m.E1},
+                 {"E2_used", m.E2},
+                 {"nu12_used", m.nu12},
+                 {"nu21_used", m.nu12 * m.E2 / m.E1},
+                 {"G12_used", m.G12},
+                 {"rho_used", m.rho},
+                 {"X_T_used", s.lamina.X_T},
+                 {"X_C_used", s.lamina.X_C},
+                 {"Y_T_used", s.lamina.Y_T},
+                 {"Y_C_used", s.lamina.Y_C},
+                 {"S_L_used", s.lamina.S_L},
+                 {"depth_used", s.depth},
+                 {"rake_used", s.rake},
+                 {"speed_used", s.speed},
+                 {"wave_speed", m.wave_speed()}};
+  out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"F_c_first_failure", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
+  out.notes.push_back("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
+                      "edge, constant friction, fixed bottom and far end and the time scaling are assumptions; "
+                      "mode-dependent degradation factors (Camanho & Matthews 1999, Tserpes et al. 2002; "
+                      "degradation = \"sudden\": to the residual); failed (fibre+matrix) Gauss points carry no stress, fully unsupported nodes are released; "
+                      "visibility across the notch and the cut line behind the edge (solvers/efg/README.md).");
+  return out;
+}
+
+SolverSpec cutting_spec() {
+  SolverSpec cut;
+  cut.name = "efg_cutting";
+  cut.description = "Explicit EFG orthogonal cutting of UD-GFRP (Kahwash 2018): F_c, F_t per unit width to chip completion";
+  cut.source = "Kahwash et al. 2018 sections 2-3 and 5, Tables 2-3";
+  cut.params = cutting_params();
+  cut.tables = {{"forces",
+                 "tool force history",
+                 {{"t", "s", "time"},
+                  {"travel", "m", "tool travel after first contact"},
+                  {"F_c", "N/m", "cutting force per unit width"},
+                  {"F_t", "N/m", "thrust force per unit width"},
+                  {"dt", "s", "critical time step (Eq. 56)"}}}};
+  cut.scalars = cutting_scalars();
   cut.checkpoints = true;
   cut.run = [](const Values& v, const ProgressFn& progress) {
-    CuttingSetup s;
-    s.material = gfrp_of(v);
-    s.lamina.X_T = v.at("X_T");
-    s.lamina.X_C = v.at("X_C");
-    s.lamina.Y_T = v.at("Y_T");
-    s.lamina.Y_C = v.at("Y_C");
-    s.lamina.S_L = v.at("S_L");
-    s.lamina.E1 = s.material.E1;
-    s.lamina.G12 = s.material.G12;
-    s.lamina.nu12 = s.material.nu12;
-    s.criterion = static_cast<analytic::Criterion>(whole_number(v, "criterion"));
-    s.theta = v.at("theta");
-    s.depth = v.at(glossary::kDepthOfCut);
-    s.rake = v.at("rake");
-    s.work_length = v.at("work_length");
-    s.work_height = v.at("work_height");
-    s.notch = v.at("notch");
-    s.spacing = v.at("spacing");
-    s.support_factor = v.at("support_factor");
-    s.speed = v.at("speed");
-    s.time_scale = v.at("time_scale");
-    s.travel = v.at("travel");
-    s.ramp_transits = v.at("ramp_transits");
-    s.mu = v.at("mu");
-    s.clearance = v.at("clearance");
-    s.residual = v.at("residual");
-    s.edge_radius = v.at("edge_radius");
-    s.degradation = static_cast<Degradation>(whole_number(v, "degradation"));
-    s.erosion = static_cast<Erosion>(whole_number(v, "erosion"));
-    s.visibility = v.at("visibility") > 0.5;
-    s.collapse_ratio = v.at("collapse_ratio");
-    s.drop = v.at("drop");
-    s.drop_window = whole_number(v, "drop_window");
-    s.min_travel = v.at("min_travel");
-    s.completion_guard = static_cast<CompletionGuard>(whole_number(v, "completion_guard"));
-    s.cfl = v.at("cfl");
-    s.snapshots = whole_number(v, "snapshots");
+    const CuttingSetup s = cutting_setup_from(v);
     const auto t0 = std::chrono::steady_clock::now();
     const CuttingResult r = run_cutting(s, [&](double f) {
       if (progress) progress(f, "simulated " + std::to_string(f * 100.0) + " %");
     });
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    RunOutput out;
-    if (!r.checkpoint_error.empty())
-      out.notes.push_back("efg_cutting: a checkpoint could not be written (" + r.checkpoint_error + "); the run went on");
-    if (r.resumed_from_step > 0)
-      out.notes.push_back("efg_cutting: resumed from a checkpoint at step " + std::to_string(r.resumed_from_step) +
-                          " (the result equals an uninterrupted run with the same thread count; node_steps_per_s "
-                          "counts the steps since the resume)");
-    Table t;
-    t.name = "forces";
-    t.add("t", "s", r.t);
-    t.add("travel", "m", r.travel);
-    t.add("F_c", "N/m", r.Fc);
-    t.add("F_t", "N/m", r.Ft);
-    t.add("dt", "s", r.dt);
-    out.tables.push_back(t);
-    for (const auto& sn : r.snapshots) {
-      Snapshot snap;
-      snap.time = sn.t;
-      snap.x = sn.x;
-      snap.y = sn.y;
-      snap.add("fibre_damage", "1", sn.fibre);
-      snap.add("matrix_damage", "1", sn.matrix);
-      out.snapshots.push_back(snap);
-    }
-    const double ng = static_cast<double>(r.gauss);
-    auto frac = [](std::size_t a, std::size_t b) { return b > 0 ? static_cast<double>(a) / b : 0.0; };
-    const Orthotropic& m = s.material;
-    out.scalars = {{"F_c", r.Fc_mean},
-                   {"F_t", r.Ft_mean},
-                   {"F_c_peak", r.Fc_peak},
-                   {"t_contact", r.t_contact},
-                   {"t_complete", r.t_complete},
-                   {"travel_complete", r.travel_complete},
-                   {"chip_complete", r.t_complete >= 0.0 ? 1.0 : 0.0},
-                   {"travel_path", r.travel_path},
-                   {"travel_first_drop", r.travel_first_drop},
-                   {"travel_separated", r.travel_separated},
-                   {"travel_first_failure", r.travel_first_failure},
-                   {"F_c_first_failure", r.Fc_first_failure},
-                   {"dt_drop_ratio", r.dt_drop_ratio},
-                   {"dt_min_ratio", r.dt_min / r.dt_initial},
-                   {"fibre_damaged_fraction", static_cast<double>(r.fibre_damaged) / ng},
-                   {"matrix_damaged_fraction", static_cast<double>(r.matrix_damaged) / ng},
-                   {"chip_fibre_fraction", frac(r.chip_fibre, r.chip_gauss)},
-                   {"chip_matrix_fraction", frac(r.chip_matrix, r.chip_gauss)},
-                   {"sub_fibre_fraction", frac(r.sub_fibre, r.sub_gauss)},
-                   {"sub_matrix_fraction", frac(r.sub_matrix, r.sub_gauss)},
-                   {"eroded", static_cast<double>(r.eroded)},
-                   {"released", static_cast<double>(r.released)},
-                   {"collapse_eroded", static_cast<double>(r.collapse_eroded)},
-                   {"nodes", static_cast<double>(r.nodes)},
-                   {"gauss_points", ng},
-                   {"steps", static_cast<double>(r.steps)},
-                   {"node_steps_per_s", static_cast<double>(r.nodes) * static_cast<double>(r.steps - r.resumed_from_step) / wall},
-                   {"E1_used", m.E1},
-                   {"E2_used", m.E2},
-                   {"nu12_used", m.nu12},
-                   {"nu21_used", m.nu12 * m.E2 / m.E1},
-                   {"G12_used", m.G12},
-                   {"rho_used", m.rho},
-                   {"X_T_used", s.lamina.X_T},
-                   {"X_C_used", s.lamina.X_C},
-                   {"Y_T_used", s.lamina.Y_T},
-                   {"Y_C_used", s.lamina.Y_C},
-                   {"S_L_used", s.lamina.S_L},
-                   {"depth_used", s.depth},
-                   {"rake_used", s.rake},
-                   {"speed_used", s.speed},
-                   {"wave_speed", m.wave_speed()}};
-    out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"F_c_first_failure", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
-    out.notes.push_back("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
-                        "edge, constant friction, fixed bottom and far end and the time scaling are assumptions; "
-                        "mode-dependent degradation factors (Camanho & Matthews 1999, Tserpes et al. 2002; "
-                        "degradation = 0: sudden to the residual); failed (fibre+matrix) Gauss points carry no stress, fully unsupported nodes are released; "
-                        "visibility across the notch and the cut line behind the edge (solvers/efg/README.md).");
-    return out;
+    return cutting_output(s, r, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   };
-  registry.add(cut);
+  return cut;
+}
+
+}  // namespace
+
+void register_solvers(SolverRegistry& registry) {
+  if (registry.find("efg_cantilever")) return;  // idempotent
+  for (SolverSpec spec : {cantilever_spec(), wave_spec(), patch_spec(), cutting_spec()}) registry.add(std::move(spec));
 }
 
 }  // namespace cutbench::efg

@@ -244,6 +244,304 @@ SolverSpec block_spec() {
   return s;
 }
 
+// ---- limit_cutting: the run in pieces (setup, modes, solves, steady-state loop, outputs) ----
+
+// The geometry and contact of one cutting run from validated parameters (phi and l: their
+// computed defaults when unset).
+CuttingSetup cutting_setup_from(const Values& v) {
+  const double t1 = v.at("t1"), a = v.at(glossary::kRakeAngle), mu = v.at(glossary::kFriction);
+  CuttingSetup c;
+  c.alpha = a;
+  c.mu = mu;
+  c.phi = std::isnan(v.at("phi")) ? merchant_shear_angle(a, mu) : v.at("phi");
+  const double len = std::isnan(v.at("contact_length")) ? t1 / std::cos(a) : v.at("contact_length");
+  if (!(len > 0.0)) throw InputError("contact_length", "must be positive");
+  c.contact_length = len / t1;
+  c.n = as_int(v, "n");
+  c.coulomb_fixed_point = as_int(v, "coulomb_fixed_point") == 1;
+  c.streamline = as_int(v, "streamline");
+  c.stick_tol = v.at("stick_tol");
+  c.eta2 = v.at("eta2");
+  c.chip_extra = v.at("chip_extra");
+  return c;
+}
+
+// What a run does around the limit-analysis solve: the options of the case and their
+// combinations, checked.
+struct CuttingModes {
+  int search_mode = 0;  // contact_search: 0 fixed, 1 grow, 2 separation
+  int loop_mode = 0;    // steady_state: 0 off, 1 turning_point, 2 tangent_exit
+  int adapt_steps = 0;
+  bool fit_eta = false, anisotropic = false;
+  bool search() const { return search_mode > 0; }
+  bool loop() const { return loop_mode == 1; }
+  bool tangent() const { return loop_mode == 2; }
+};
+
+CuttingModes cutting_modes_from(const Values& v) {
+  CuttingModes m;
+  m.search_mode = as_int(v, "contact_search");
+  m.loop_mode = as_int(v, "steady_state");
+  m.fit_eta = as_int(v, "fit_eta2") == 1;
+  m.adapt_steps = as_int(v, "adapt_steps");
+  m.anisotropic = as_int(v, "refine") == 1;
+  if (m.fit_eta && (m.search() || m.loop() || m.tangent()))
+    throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = \"fixed\", steady_state = \"off\")");
+  if (m.adapt_steps > 0 && (m.loop() || (m.search() && !m.tangent())))
+    throw InputError("adapt_steps", "adaptive refinement needs steady_state = \"off\" or \"tangent_exit\", and a contact search only together with \"tangent_exit\"");
+  return m;
+}
+
+// The limit-analysis solves of one run, counted (Coulomb steps excluded).
+class CuttingSolves {
+public:
+  explicit CuttingSolves(const CuttingModes& m) : m_(m) {}
+
+  // One configuration at a fixed geometry: uniform mesh, or `adapt_steps` dissipation-driven
+  // refinements from it (the mesh is rebuilt from scratch for every geometry).
+  CuttingResult fixed(const CuttingSetup& cs) {
+    count += m_.adapt_steps + 1;
+    if (m_.adapt_steps > 0) {
+      AdaptOptions opt;
+      opt.steps = m_.adapt_steps;
+      opt.fraction = 0.5;
+      opt.anisotropic = m_.anisotropic;
+      return adapt_cutting(cs, opt);
+    }
+    return solve_cutting(cs);
+  }
+
+  // Contact length of the geometry cs (phi set) on the uniform mesh and the solution there:
+  // natural separation (the long unilateral-contact solution, profile cut at l_sep) or the
+  // sigma_n -> 0 search.
+  std::pair<double, CuttingResult> search(const CuttingSetup& cs) {
+    if (m_.search_mode == 2) {
+      auto nat = natural_contact_length(cs);
+      ++count;
+      truncate_contact(nat.long_contact, nat.contact_length);
+      return {nat.contact_length, std::move(nat.long_contact)};
+    }
+    auto res = search_contact_length(cs);
+    count += static_cast<int>(res.lengths.size());
+    if (res.restricted) throw NumericalError("contact_search: sigma_n stays compressive up to l = 5 t1");
+    return {res.contact_length, std::move(res.final)};
+  }
+
+  // A fixed geometry, or the contact search (which sets c's contact length).
+  CuttingResult once(CuttingSetup& c) {
+    if (!m_.search()) return fixed(c);
+    auto found = search(c);
+    c.contact_length = found.first;
+    return std::move(found.second);
+  }
+
+  int count = 0;
+
+private:
+  const CuttingModes& m_;
+};
+
+// The solution of a run and the history of its outer loop.
+struct SteadyState {
+  CuttingResult r;
+  std::vector<double> phi, phi_star, fc, l, elements, eta;  // per iteration (eta2 fit: exit angles in phi)
+  bool tangent_converged = true, tangent_at_merchant = false;
+  std::vector<std::string> notes;
+};
+
+// Fig. 4, phi <- min(phi*, phi_M) with phi* the free-surface turning point: at most 4 updates,
+// |d phi| < 0.5 deg.
+void turning_point_loop(CuttingSetup& c, CuttingSolves& solves, bool search, double t1, SteadyState& st) {
+  const double phi_m = merchant_shear_angle(c.alpha, c.mu);
+  for (int it = 0; it < 5; ++it) {
+    st.r = solves.once(c);
+    const double ps = measured_shear_angle(c, st.r);
+    st.phi.push_back(c.phi);
+    st.phi_star.push_back(ps);
+    st.fc.push_back(st.r.fc_bar);
+    const double next = std::min(ps, phi_m);
+    if (std::abs(next - c.phi) < 0.5 * kPi / 180.0 || it == 4) break;
+    c.phi = next;
+    if (search) c.contact_length = t1 / std::cos(c.alpha) / t1;
+  }
+}
+
+// The run's outer loop: the steady-state loop of Fig. 4 (tangent exit or turning point), the
+// eta2 fit, or one solve; c ends as the geometry of the returned solution.
+SteadyState solve_steady_state(CuttingSetup& c, const CuttingModes& m, CuttingSolves& solves, double t1) {
+  SteadyState st;
+  if (m.tangent()) {  // Fig. 4 with phi* from the chip direction after the contact (eta2 = 0)
+    // With a contact search the loop updates l at every phi (Fig. 4: phi -> t2 -> l -> FE):
+    // l(phi) from the uniform mesh, then the permanent contact over l(phi) (w_n = 0, paper
+    // sec. 2.2) is solved (and refined) and eta2 measured on it. The unilateral long-contact
+    // solution itself is not used for eta2: its chip turns away after the separation.
+    auto res = tangent_loop(c, [&](CuttingSetup cs) {
+      if (m.search()) cs.contact_length = solves.search(cs).first;
+      CuttingResult rr = solves.fixed(cs);
+      st.l.push_back(cs.contact_length);
+      st.elements.push_back(rr.model.mesh.num_elements());
+      return rr;
+    });
+    st.phi = res.phi;
+    st.eta = res.eta2;
+    st.fc = res.fc_bar;
+    st.tangent_converged = res.converged;
+    st.tangent_at_merchant = res.at_merchant;
+    c.phi = res.phi_star;
+    for (std::size_t i = 0; i < st.phi.size(); ++i)
+      if (st.phi[i] == res.phi_star) c.contact_length = st.l[i];
+    st.r = std::move(res.final);
+  } else if (m.loop()) {
+    turning_point_loop(c, solves, m.search(), t1, st);
+  } else if (m.fit_eta) {
+    auto fit = fit_eta2(c, [&](CuttingSetup cs) { return solves.once(cs); });
+    st.eta = fit.eta2;
+    st.phi = fit.exit_angle;  // the fit history
+    c.eta2 = fit.eta2.back();
+    if (!fit.converged) st.notes.push_back("eta2 fit not converged after 6 solves (last exit angle " + std::to_string(fit.exit_angle.back()) + " rad)");
+    st.r = std::move(fit.final);
+  } else {
+    st.r = solves.once(c);
+  }
+  return st;
+}
+
+// Admissibility and plastification next to the contact: max sqrt(J2)/k, the yielded share of
+// the stress points of the elements on the contact, and their dissipation profile (rake_layer).
+void add_contact_layer(RunOutput& out, const CuttingSetup& c, const CuttingResult& r) {
+  const auto& sol = r.solution;
+  double mx = 0.0;
+  for (Eigen::Index sp = 0; sp < sol.stress.rows(); ++sp) {
+    const double qq = 0.5 * (sol.stress(sp, 0) - sol.stress(sp, 1)), tt = sol.stress(sp, 2);
+    mx = std::max(mx, std::sqrt(qq * qq + tt * tt) / c.k);
+  }
+  out.set_scalar("max_sigma_eq_over_k", mx, "1");
+  std::vector<char> incontact(r.model.mesh.nodes.size(), 0);
+  for (const auto& cn : r.model.contacts) incontact[static_cast<std::size_t>(cn.node)] = 1;
+  int pts = 0, yielded = 0;
+  Table layer;
+  layer.name = "rake_layer";
+  std::vector<std::pair<double, double>> prof;  // (s/l, dissipation density) of elements on the contact
+  const Eigen::Vector2d rr(std::sin(c.alpha), std::cos(c.alpha));
+  for (int e = 0; e < r.model.mesh.num_elements(); ++e) {
+    const auto& el = r.model.mesh.elements[static_cast<std::size_t>(e)];
+    int on = 0;
+    for (int j = 0; j < 3; ++j) on += incontact[static_cast<std::size_t>(el[static_cast<std::size_t>(j)])];
+    if (on < 2) continue;  // an edge on the contact
+    Eigen::Vector2d xc = Eigen::Vector2d::Zero();
+    for (int j = 0; j < 3; ++j) {
+      xc += r.model.mesh.nodes[static_cast<std::size_t>(el[static_cast<std::size_t>(j)])] / 3.0;
+      const double qq = 0.5 * (sol.stress(3 * e + j, 0) - sol.stress(3 * e + j, 1)), tt = sol.stress(3 * e + j, 2);
+      ++pts;
+      if (std::sqrt(qq * qq + tt * tt) >= 0.99 * c.k) ++yielded;
+    }
+    prof.emplace_back(xc.dot(rr) / c.contact_length, sol.element_dissipation_density[e]);
+  }
+  out.set_scalar("contact_yield_fraction", pts ? static_cast<double>(yielded) / pts : 0.0, "1");
+  std::sort(prof.begin(), prof.end());
+  std::vector<double> ls, ld;
+  for (const auto& [x, d] : prof) {
+    ls.push_back(x);
+    ld.push_back(d);
+  }
+  layer.add("s_over_l", "1", ls);
+  layer.add("dissipation_density", "1", ld);
+  out.tables.push_back(std::move(layer));
+}
+
+RunOutput cutting_output(const Values& v, const CuttingSetup& c, const CuttingModes& m, const SteadyState& st,
+                         int solves, double seconds) {
+  const double k = v.at("k"), t1 = v.at("t1"), w = v.at("w"), a = c.alpha, mu = c.mu;
+  const CuttingResult& r = st.r;
+  RunOutput out;
+  auto put = [&](const std::string& name, double value, const std::string& unit) { out.set_scalar(name, value, unit); };
+  put("cutting_force", r.fc_bar * k * t1 * w, "N");
+  put("feed_force", r.ff_bar * k * t1 * w, "N");
+  put("fc_bar", r.fc_bar, "1");
+  put("merchant_fc_bar", merchant_force_bar(c.phi, a, mu), "1");
+  put("phi", c.phi, "rad");
+  put("t2", r.t2 * t1, "m");
+  put("stick_fraction", r.stick_fraction, "1");
+  put("mu_sticking", r.mu_sticking, "1");
+  put("mu_sliding", r.mu_sliding, "1");
+  put("mu_app", r.mu_app, "1");
+  put("contact_length", c.contact_length * t1, "m");
+  put("l_over_t1", c.contact_length, "1");
+  double phi_star = std::numeric_limits<double>::quiet_NaN();
+  try {
+    phi_star = measured_shear_angle(c, r);
+  } catch (const NumericalError&) {
+    out.notes.push_back("phi* not measurable: the free-surface velocity never turns toward the rake face");
+  }
+  put("phi_star", phi_star, "rad");
+  put("flux_top", r.flux_top, "1");
+  put("flux_back", r.flux_back, "1");
+  put("flux_end", r.flux_end, "1");
+  put("flux_rake_free", r.flux_rake_free, "1");
+  put("streamline_force", r.streamline_force, "1");
+  put("eta2", r.chip_exit_angle, "rad");
+  put("eta2_geometry", c.eta2, "rad");
+  for (const auto& nt : st.notes) out.notes.push_back(nt);
+  if (m.fit_eta) {
+    Table hist;
+    hist.name = "eta2_fit";
+    hist.add("eta2", "rad", st.eta);
+    hist.add("exit_angle", "rad", st.phi);
+    out.tables.push_back(std::move(hist));
+  }
+  put("solves", solves, "1");
+  put("elements", r.model.mesh.num_elements(), "1");
+  add_contact_layer(out, c, r);
+  if (m.tangent()) {
+    Table hist;
+    hist.name = "steady_state";
+    hist.add("phi", "rad", st.phi);
+    hist.add("eta2", "rad", st.eta);
+    hist.add("fc_bar", "1", st.fc);
+    hist.add("l_over_t1", "1", st.l);
+    hist.add("elements", "1", st.elements);
+    out.tables.push_back(std::move(hist));
+    if (!st.tangent_converged) out.notes.push_back("steady-state (eta2) loop: eta2 > 0 down to phi = 10 deg, not converged");
+    out.notes.push_back(st.tangent_at_merchant ? "steady-state (eta2) loop: eta2(phi_M) <= 1e-3 rad, phi_M kept (phi* >= phi_M)"
+                                               : "steady-state (eta2) loop: phi* < phi_M where the chip leaves the contact along the rake face");
+  }
+  if (m.loop()) {
+    Table hist;
+    hist.name = "steady_state";
+    hist.add("phi", "rad", st.phi);
+    hist.add("phi_star", "rad", st.phi_star);
+    hist.add("fc_bar", "1", st.fc);
+    out.tables.push_back(std::move(hist));
+  }
+  put("coulomb_iterations", r.coulomb.iterations, "1");
+  if (c.mu > 0.0 && c.coulomb_fixed_point && !r.coulomb.converged)
+    out.notes.push_back("Coulomb fixed point not converged (last relative pressure change " +
+                        std::to_string(r.coulomb.change) + ")");
+  add_solver_stats(out, r.solution, seconds);
+  Table contact;
+  contact.name = "rake_contact";
+  std::vector<double> s_over_l;
+  for (double si : r.s) s_over_l.push_back(si / c.contact_length);
+  contact.add("s_over_l", "1", s_over_l);
+  contact.add("sigma_n_over_k", "1", r.sigma_n);
+  contact.add("tau_over_k", "1", r.tau);
+  contact.add("slip_velocity", "1", r.slip);
+  contact.add("stick", "1", std::vector<double>(r.stick.begin(), r.stick.end()));
+  out.tables.push_back(std::move(contact));
+  add_snapshot(out, r.model, r.solution, t1, 1.0);
+  out.notes.push_back(std::string(m.loop() || m.tangent() ? "steady-state loop (Fig. 4) on phi; " : "fixed shear angle; ") +
+                      (m.search() ? (m.search_mode == 2 ? "contact length from the natural separation (uniform mesh); "
+                                                        : "contact length searched (sigma_n -> 0); ")
+                                  : "contact length imposed; ") +
+                      (m.adapt_steps > 0 ? std::to_string(m.adapt_steps) + (m.anisotropic ? " anisotropic" : " isotropic") +
+                                               " refinement steps from the structured mesh at every geometry"
+                                         : std::string("structured mesh, no adaptive refinement")));
+  static const char* kStreamline[] = {"none", "top", "top_back", "top_back_beyond"};
+  out.notes.push_back(std::string("free surfaces held as streamlines: ") + kStreamline[std::clamp(c.streamline, 0, 3)]);
+  out.notes.push_back("contact stresses are lumped nodal reactions over tributary lengths (T6 weights 1/6, 4/6, 1/6)");
+  return out;
+}
+
 SolverSpec cutting_spec() {
   SolverSpec s;
   s.name = "limit_cutting";
@@ -339,244 +637,15 @@ SolverSpec cutting_spec() {
                {"kkt_dimension", Dim::dimensionless, "size of the KKT system"},
                {"solve_time", Dim::time, "wall time of the solves"}};
   s.run = [spec = s](const Values& given, const ProgressFn& progress) {
-    Values v = validated(spec, given);
-    const double k = v.at("k"), t1 = v.at("t1"), w = v.at("w"), a = v.at(glossary::kRakeAngle), mu = v.at(glossary::kFriction);
-    CuttingSetup c;
-    c.alpha = a;
-    c.mu = mu;
-    c.phi = std::isnan(v.at("phi")) ? merchant_shear_angle(a, mu) : v.at("phi");
-    const double len = std::isnan(v.at("contact_length")) ? t1 / std::cos(a) : v.at("contact_length");
-    if (!(len > 0.0)) throw InputError("contact_length", "must be positive");
-    c.contact_length = len / t1;
-    c.n = as_int(v, "n");
-    c.coulomb_fixed_point = as_int(v, "coulomb_fixed_point") == 1;
-    c.streamline = as_int(v, "streamline");
-    c.stick_tol = v.at("stick_tol");
-    c.eta2 = v.at("eta2");
-    c.chip_extra = v.at("chip_extra");
-    const bool fit_eta = as_int(v, "fit_eta2") == 1;
-    const int search_mode = as_int(v, "contact_search");
-    const int loop_mode = as_int(v, "steady_state");
-    const bool search = search_mode > 0, loop = loop_mode == 1, tangent = loop_mode == 2;
-    if (fit_eta && (search || loop || tangent))
-      throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = 0, steady_state = 0)");
-    const int adapt_steps = as_int(v, "adapt_steps");
-    if (adapt_steps > 0 && (loop || (search && !tangent)))
-      throw InputError("adapt_steps", "adaptive refinement needs steady_state = 0 or 2, and a contact search only together with steady_state = 2");
+    const Values v = validated(spec, given);
+    CuttingSetup c = cutting_setup_from(v);
+    const CuttingModes m = cutting_modes_from(v);
     if (progress) progress(0.0, "solving");
     const auto t0 = std::chrono::steady_clock::now();
-    int solves = 0;
-    std::vector<double> loop_phi, loop_phi_star, loop_fc, loop_l, loop_el;
-    // one configuration at a fixed geometry: uniform mesh, or `adapt_steps` dissipation-driven
-    // refinements from it (the mesh is rebuilt from scratch for every geometry)
-    auto solve_fixed = [&](const CuttingSetup& cs) {
-      solves += adapt_steps + 1;
-      if (adapt_steps > 0) {
-        AdaptOptions opt;
-        opt.steps = adapt_steps;
-        opt.fraction = 0.5;
-        opt.anisotropic = as_int(v, "refine") == 1;
-        return adapt_cutting(cs, opt);
-      }
-      return solve_cutting(cs);
-    };
-    // contact length of the geometry cs (phi set) on the uniform mesh and the solution there:
-    // natural separation (mode 2: the long unilateral-contact solution, profile cut at l_sep) or
-    // the sigma_n -> 0 search (mode 1)
-    auto search_on = [&](const CuttingSetup& cs) -> std::pair<double, CuttingResult> {
-      if (search_mode == 2) {
-        auto nat = natural_contact_length(cs);
-        ++solves;
-        truncate_contact(nat.long_contact, nat.contact_length);
-        return {nat.contact_length, std::move(nat.long_contact)};
-      }
-      auto res = search_contact_length(cs);
-      solves += static_cast<int>(res.lengths.size());
-      if (res.restricted) throw NumericalError("contact_search: sigma_n stays compressive up to l = 5 t1");
-      return {res.contact_length, std::move(res.final)};
-    };
-    auto contact_length_of = [&](const CuttingSetup& cs) { return search_on(cs).first; };
-    auto solve_once = [&](CuttingSetup cs) {
-      if (!search) return solve_fixed(cs);
-      auto found = search_on(cs);
-      c.contact_length = found.first;
-      return std::move(found.second);
-    };
-    CuttingResult r;
-    std::vector<std::string> out_notes_pending;
-    std::vector<double> loop_eta;
-    bool tangent_converged = true, tangent_at_merchant = false;
-    if (tangent) {  // Fig. 4 with phi* from the chip direction after the contact (eta2 = 0)
-      // With a contact search the loop updates l at every phi (Fig. 4: phi -> t2 -> l -> FE):
-      // l(phi) from the uniform mesh, then the permanent contact over l(phi) (w_n = 0, paper
-      // sec. 2.2) is solved (and refined) and eta2 measured on it. The unilateral long-contact
-      // solution itself is not used for eta2: its chip turns away after the separation.
-      auto res = tangent_loop(c, [&](CuttingSetup cs) {
-        if (search) cs.contact_length = contact_length_of(cs);
-        CuttingResult rr = solve_fixed(cs);
-        loop_l.push_back(cs.contact_length);
-        loop_el.push_back(rr.model.mesh.num_elements());
-        return rr;
-      });
-      loop_phi = res.phi;
-      loop_eta = res.eta2;
-      loop_fc = res.fc_bar;
-      tangent_converged = res.converged;
-      tangent_at_merchant = res.at_merchant;
-      c.phi = res.phi_star;
-      for (std::size_t i = 0; i < loop_phi.size(); ++i)
-        if (loop_phi[i] == res.phi_star) c.contact_length = loop_l[i];
-      r = std::move(res.final);
-    } else if (loop) {  // Fig. 4: φ ← min(φ*, φ_M), at most 4 updates, |Δφ| < 0.5°
-      const double phi_m = merchant_shear_angle(a, mu);
-      for (int it = 0; it < 5; ++it) {
-        r = solve_once(c);
-        const double ps = measured_shear_angle(c, r);
-        loop_phi.push_back(c.phi);
-        loop_phi_star.push_back(ps);
-        loop_fc.push_back(r.fc_bar);
-        const double next = std::min(ps, phi_m);
-        if (std::abs(next - c.phi) < 0.5 * kPi / 180.0 || it == 4) break;
-        c.phi = next;
-        if (search) c.contact_length = t1 / std::cos(a) / t1;
-      }
-    } else if (fit_eta) {
-      auto fit = fit_eta2(c, solve_once);
-      loop_eta = fit.eta2;
-      loop_phi = fit.exit_angle;  // reused below as the fit history
-      c.eta2 = fit.eta2.back();
-      if (!fit.converged) out_notes_pending.push_back("eta2 fit not converged after 6 solves (last exit angle " + std::to_string(fit.exit_angle.back()) + " rad)");
-      r = std::move(fit.final);
-    } else {
-      r = solve_once(c);
-    }
-    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    RunOutput out;
-    auto put = [&](const std::string& name, double value, const std::string& unit) { out.set_scalar(name, value, unit); };
-    put("cutting_force", r.fc_bar * k * t1 * w, "N");
-    put("feed_force", r.ff_bar * k * t1 * w, "N");
-    put("fc_bar", r.fc_bar, "1");
-    put("merchant_fc_bar", merchant_force_bar(c.phi, a, mu), "1");
-    put("phi", c.phi, "rad");
-    put("t2", r.t2 * t1, "m");
-    put("stick_fraction", r.stick_fraction, "1");
-    put("mu_sticking", r.mu_sticking, "1");
-    put("mu_sliding", r.mu_sliding, "1");
-    put("mu_app", r.mu_app, "1");
-    put("contact_length", c.contact_length * t1, "m");
-    put("l_over_t1", c.contact_length, "1");
-    double phi_star = std::numeric_limits<double>::quiet_NaN();
-    try {
-      phi_star = measured_shear_angle(c, r);
-    } catch (const NumericalError&) {
-      out.notes.push_back("phi* not measurable: the free-surface velocity never turns toward the rake face");
-    }
-    put("phi_star", phi_star, "rad");
-    put("flux_top", r.flux_top, "1");
-    put("flux_back", r.flux_back, "1");
-    put("flux_end", r.flux_end, "1");
-    put("flux_rake_free", r.flux_rake_free, "1");
-    put("streamline_force", r.streamline_force, "1");
-    put("eta2", r.chip_exit_angle, "rad");
-    put("eta2_geometry", c.eta2, "rad");
-    for (auto& nt : out_notes_pending) out.notes.push_back(nt);
-    if (fit_eta) {
-      Table hist;
-      hist.name = "eta2_fit";
-      hist.add("eta2", "rad", loop_eta);
-      hist.add("exit_angle", "rad", loop_phi);
-      out.tables.push_back(std::move(hist));
-    }
-    put("solves", solves, "1");
-    put("elements", r.model.mesh.num_elements(), "1");
-    {
-      // admissibility and plastification next to the contact
-      const auto& sol = r.solution;
-      double mx = 0.0;
-      for (Eigen::Index sp = 0; sp < sol.stress.rows(); ++sp) {
-        const double qq = 0.5 * (sol.stress(sp, 0) - sol.stress(sp, 1)), tt = sol.stress(sp, 2);
-        mx = std::max(mx, std::sqrt(qq * qq + tt * tt) / c.k);
-      }
-      put("max_sigma_eq_over_k", mx, "1");
-      std::vector<char> incontact(r.model.mesh.nodes.size(), 0);
-      for (const auto& cn : r.model.contacts) incontact[static_cast<std::size_t>(cn.node)] = 1;
-      int pts = 0, yielded = 0;
-      Table layer;
-      layer.name = "rake_layer";
-      std::vector<std::pair<double, double>> prof;  // (s/l, dissipation density) of elements on the contact
-      const Eigen::Vector2d rr(std::sin(a), std::cos(a));
-      for (int e = 0; e < r.model.mesh.num_elements(); ++e) {
-        const auto& el = r.model.mesh.elements[static_cast<std::size_t>(e)];
-        int on = 0;
-        for (int j = 0; j < 3; ++j) on += incontact[static_cast<std::size_t>(el[static_cast<std::size_t>(j)])];
-        if (on < 2) continue;  // an edge on the contact
-        Eigen::Vector2d xc = Eigen::Vector2d::Zero();
-        for (int j = 0; j < 3; ++j) {
-          xc += r.model.mesh.nodes[static_cast<std::size_t>(el[static_cast<std::size_t>(j)])] / 3.0;
-          const double qq = 0.5 * (sol.stress(3 * e + j, 0) - sol.stress(3 * e + j, 1)), tt = sol.stress(3 * e + j, 2);
-          ++pts;
-          if (std::sqrt(qq * qq + tt * tt) >= 0.99 * c.k) ++yielded;
-        }
-        prof.emplace_back(xc.dot(rr) / c.contact_length, sol.element_dissipation_density[e]);
-      }
-      put("contact_yield_fraction", pts ? static_cast<double>(yielded) / pts : 0.0, "1");
-      std::sort(prof.begin(), prof.end());
-      std::vector<double> ls, ld;
-      for (const auto& [x, d] : prof) {
-        ls.push_back(x);
-        ld.push_back(d);
-      }
-      layer.add("s_over_l", "1", ls);
-      layer.add("dissipation_density", "1", ld);
-      out.tables.push_back(std::move(layer));
-    }
-    if (tangent) {
-      Table hist;
-      hist.name = "steady_state";
-      hist.add("phi", "rad", loop_phi);
-      hist.add("eta2", "rad", loop_eta);
-      hist.add("fc_bar", "1", loop_fc);
-      hist.add("l_over_t1", "1", loop_l);
-      hist.add("elements", "1", loop_el);
-      out.tables.push_back(std::move(hist));
-      if (!tangent_converged) out.notes.push_back("steady-state (eta2) loop: eta2 > 0 down to phi = 10 deg, not converged");
-      out.notes.push_back(tangent_at_merchant ? "steady-state (eta2) loop: eta2(phi_M) <= 1e-3 rad, phi_M kept (phi* >= phi_M)"
-                                              : "steady-state (eta2) loop: phi* < phi_M where the chip leaves the contact along the rake face");
-    }
-    if (loop) {
-      Table hist;
-      hist.name = "steady_state";
-      hist.add("phi", "rad", loop_phi);
-      hist.add("phi_star", "rad", loop_phi_star);
-      hist.add("fc_bar", "1", loop_fc);
-      out.tables.push_back(std::move(hist));
-    }
-    put("coulomb_iterations", r.coulomb.iterations, "1");
-    if (c.mu > 0.0 && c.coulomb_fixed_point && !r.coulomb.converged)
-      out.notes.push_back("Coulomb fixed point not converged (last relative pressure change " +
-                          std::to_string(r.coulomb.change) + ")");
-    add_solver_stats(out, r.solution, dt);
-    Table contact;
-    contact.name = "rake_contact";
-    std::vector<double> s_over_l;
-    for (double si : r.s) s_over_l.push_back(si / c.contact_length);
-    contact.add("s_over_l", "1", s_over_l);
-    contact.add("sigma_n_over_k", "1", r.sigma_n);
-    contact.add("tau_over_k", "1", r.tau);
-    contact.add("slip_velocity", "1", r.slip);
-    contact.add("stick", "1", std::vector<double>(r.stick.begin(), r.stick.end()));
-    out.tables.push_back(std::move(contact));
-    add_snapshot(out, r.model, r.solution, t1, 1.0);
-    out.notes.push_back(std::string(loop || tangent ? "steady-state loop (Fig. 4) on phi; " : "fixed shear angle; ") +
-                        (search ? (search_mode == 2 ? "contact length from the natural separation (uniform mesh); "
-                                                    : "contact length searched (sigma_n -> 0); ")
-                                : "contact length imposed; ") +
-                        (adapt_steps > 0 ? std::to_string(adapt_steps) + (as_int(v, "refine") == 1 ? " anisotropic" : " isotropic") +
-                                               " refinement steps from the structured mesh at every geometry"
-                                         : std::string("structured mesh, no adaptive refinement")));
-    out.notes.push_back("free surfaces held as streamlines: mode " + std::to_string(c.streamline) +
-                        " (0 none, 1 uncut top, 2 top + chip back, 3 top + chip back beyond l)");
-    out.notes.push_back("contact stresses are lumped nodal reactions over tributary lengths (T6 weights 1/6, 4/6, 1/6)");
+    CuttingSolves solves(m);
+    const SteadyState st = solve_steady_state(c, m, solves, v.at("t1"));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    RunOutput out = cutting_output(v, c, m, st, solves.count, seconds);
     if (progress) progress(1.0, "done");
     return out;
   };

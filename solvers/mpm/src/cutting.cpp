@@ -273,6 +273,7 @@ void mean_std(const std::vector<double>& v, double& mean, double& sd) {
 // that a mistyped total_time is refused instead of overflowing the step count or running for weeks.
 constexpr double kMaxSteps = 1e8;
 
+namespace {
 // The time loop of one cutting run as the shared driver sees it (common/driver.hpp): one MPM
 // step plus its observers (blow-up guard, force-history windows, steady-window energy mark,
 // snapshot schedule, progress), with the whole state saved for checkpoints.
@@ -383,6 +384,64 @@ private:
   std::chrono::steady_clock::time_point t0_;
 };
 
+// The chip's Fig 2 metric (domain gaps and overlaps of the cut chip: material from above the crack,
+// originally behind the crack tip) and its curl (Fig 17).
+void add_chip_metrics(RunOutput& out, const MpmProblem& pb, const CuttingSetup& s) {
+  auto put = [&](const std::string& name, double value, const std::string& unit) { out.set_scalar(name, value, unit); };
+  const std::size_t n = pb.size();
+  std::vector<double> px(n), py(n), fxx(n), fxy(n), fyx(n), fyy(n);
+  std::vector<bool> use(n);
+  const double tip = pb.crack_tip_x();
+  for (std::size_t p = 0; p < n; ++p) {
+    const Eigen::Vector2d x = pb.position(p);
+    const Eigen::Matrix2d F = pb.deformation_gradient(p);
+    px[p] = x.x();
+    py[p] = x.y();
+    fxx[p] = F(0, 0);
+    fxy[p] = F(0, 1);
+    fyx[p] = F(1, 0);
+    fyy[p] = F(1, 1);
+    use[p] = !pb.rigid(p) && pb.above_crack(p) && pb.reference_position(p).x() < tip;
+  }
+  const DomainCoverage cov = domain_coverage(px, py, fxx, fxy, fyx, fyy, use, s.h / std::lround(s.particles_through_chip));
+  put("chip_domain_gap_fraction", cov.gap_fraction, "1");
+  put("chip_domain_overlap_fraction", cov.overlap_fraction, "1");
+  // chip curling (Fig 17): direction of the deformed image F e_x of the originally horizontal
+  // material fibres (the chip's layers). Per reference column of the material above the crack
+  // (width one particle), the circular mean of the unit vectors F e_x / |F e_x|; the angles are
+  // unwrapped from uncut material (2h ahead of the crack tip, angle ~0) back along the chip to its
+  // leading end, so turns beyond 180 deg are counted. Reported: minus the mean unwrapped angle of
+  // the columns that started within h of the left edge (curling turns the layers clockwise).
+  const double psz = s.h / std::lround(s.particles_through_chip);
+  const double xlast = std::min(tip + 2.0 * s.h, s.width_factor * s.h);
+  const int ncol = std::max(1, static_cast<int>(std::ceil(xlast / psz)));
+  std::vector<double> cs(static_cast<std::size_t>(ncol), 0.0), sn(static_cast<std::size_t>(ncol), 0.0);
+  for (std::size_t p = 0; p < n; ++p) {
+    if (pb.rigid(p) || !pb.above_crack(p)) continue;
+    const int c = static_cast<int>(std::floor(pb.reference_position(p).x() / psz));
+    const double len = std::hypot(fxx[p], fyx[p]);
+    if (c < 0 || c >= ncol || len <= 0.0) continue;
+    cs[static_cast<std::size_t>(c)] += fxx[p] / len;
+    sn[static_cast<std::size_t>(c)] += fyx[p] / len;
+  }
+  double prev = 0.0, end_sum = 0.0;
+  int end_n = 0;
+  for (int c = ncol - 1; c >= 0; --c) {
+    const auto k = static_cast<std::size_t>(c);
+    if (cs[k] == 0.0 && sn[k] == 0.0) continue;
+    double a = std::atan2(sn[k], cs[k]);
+    a += 2.0 * M_PI * std::round((prev - a) / (2.0 * M_PI));  // nearest branch to the previous column
+    prev = a;
+    if ((c + 0.5) * psz <= s.h) {
+      end_sum += a;
+      ++end_n;
+    }
+  }
+  put("chip_end_rotation", end_n > 0 ? -end_sum / end_n : std::nan(""), "rad");
+}
+
+}  // namespace
+
 RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   ModelSpec spec;
   spec.name = "mpm_cutting";
@@ -483,58 +542,7 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   put("particle_steps_per_s", static_cast<double>(pb.size()) * static_cast<double>(pb.steps()) / wall, "1/s");
   put("threads", pb.threads(), "1");
   put("frozen_particles", static_cast<double>(pb.frozen()), "1");
-  {  // Fig 2 metric on the cut chip (material from above the crack, originally behind the crack tip)
-    const std::size_t n = pb.size();
-    std::vector<double> px(n), py(n), fxx(n), fxy(n), fyx(n), fyy(n);
-    std::vector<bool> use(n);
-    const double tip = pb.crack_tip_x();
-    for (std::size_t p = 0; p < n; ++p) {
-      const Eigen::Vector2d x = pb.position(p);
-      const Eigen::Matrix2d F = pb.deformation_gradient(p);
-      px[p] = x.x();
-      py[p] = x.y();
-      fxx[p] = F(0, 0);
-      fxy[p] = F(0, 1);
-      fyx[p] = F(1, 0);
-      fyy[p] = F(1, 1);
-      use[p] = !pb.rigid(p) && pb.above_crack(p) && pb.reference_position(p).x() < tip;
-    }
-    const DomainCoverage cov = domain_coverage(px, py, fxx, fxy, fyx, fyy, use, s.h / std::lround(s.particles_through_chip));
-    put("chip_domain_gap_fraction", cov.gap_fraction, "1");
-    put("chip_domain_overlap_fraction", cov.overlap_fraction, "1");
-    // chip curling (Fig 17): direction of the deformed image F e_x of the originally horizontal
-    // material fibres (the chip's layers). Per reference column of the material above the crack
-    // (width one particle), the circular mean of the unit vectors F e_x / |F e_x|; the angles are
-    // unwrapped from uncut material (2h ahead of the crack tip, angle ~0) back along the chip to its
-    // leading end, so turns beyond 180 deg are counted. Reported: minus the mean unwrapped angle of
-    // the columns that started within h of the left edge (curling turns the layers clockwise).
-    const double psz = s.h / std::lround(s.particles_through_chip);
-    const double xlast = std::min(tip + 2.0 * s.h, s.width_factor * s.h);
-    const int ncol = std::max(1, static_cast<int>(std::ceil(xlast / psz)));
-    std::vector<double> cs(static_cast<std::size_t>(ncol), 0.0), sn(static_cast<std::size_t>(ncol), 0.0);
-    for (std::size_t p = 0; p < n; ++p) {
-      if (pb.rigid(p) || !pb.above_crack(p)) continue;
-      const int c = static_cast<int>(std::floor(pb.reference_position(p).x() / psz));
-      const double len = std::hypot(fxx[p], fyx[p]);
-      if (c < 0 || c >= ncol || len <= 0.0) continue;
-      cs[static_cast<std::size_t>(c)] += fxx[p] / len;
-      sn[static_cast<std::size_t>(c)] += fyx[p] / len;
-    }
-    double prev = 0.0, end_sum = 0.0;
-    int end_n = 0;
-    for (int c = ncol - 1; c >= 0; --c) {
-      const auto k = static_cast<std::size_t>(c);
-      if (cs[k] == 0.0 && sn[k] == 0.0) continue;
-      double a = std::atan2(sn[k], cs[k]);
-      a += 2.0 * M_PI * std::round((prev - a) / (2.0 * M_PI));  // nearest branch to the previous column
-      prev = a;
-      if ((c + 0.5) * psz <= s.h) {
-        end_sum += a;
-        ++end_n;
-      }
-    }
-    put("chip_end_rotation", end_n > 0 ? -end_sum / end_n : std::nan(""), "rad");
-  }
+  add_chip_metrics(out, pb, s);
   out.notes.push_back("F_c, F_t: force of the tool on the material per unit width (F_t positive pushing the "
                       "material down, the paper's sign); averages over " +
                       std::to_string(t_steady) + " s <= t <= " + std::to_string(t_steady_end) +

@@ -420,16 +420,10 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
 
 namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
-}
 
-SolverSpec detail::cutting_spec() {
-  SolverSpec s;
-  s.name = "sph_cutting";
-  s.description = "Thermo-mechanical SPH orthogonal cutting of Ti6Al4V (rigid tool, Coulomb friction); "
-                  "reference (Brookshaw, adiabatic) or enhanced (FMFS + convection/radiation) thermal model";
-  s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Sec. 5.2, Fig. 4, Table 1";
+std::vector<ParamSpec> cutting_params() {
   const CuttingSetup def;
-  s.params = {
+  return {
       integer_param("particles_over_height", "particles over the workpiece height", def.particles_over_height, 4, 400),
       param("length", Dim::length, "workpiece length", def.length, 1e-6, 1.0),
       param("height", Dim::length, "workpiece height", def.height, 1e-6, 1.0),
@@ -454,21 +448,10 @@ SolverSpec detail::cutting_spec() {
       param("contact_stiffness", Dim::dimensionless, "penalty contact stiffness alpha (f_N = -alpha m g / dt^2; assumed, not in the paper)", def.contact_stiffness, 0.001, 1.0),
       switch_param("shear_cap", "true: cap the friction stress at the chip's shear flow stress (Zorev); false: Coulomb only (paper)", false),
   };
-  s.tables = {{"forces",
-               "tool force history (window means)",
-               {{"t", "s", "time"},
-                {"cut_distance", "m", "tool travel"},
-                {"F_c", "N/m", "cutting force per unit width"},
-                {"F_t", "N/m", "thrust force per unit width"}}},
-              {"chip",
-               "chip columns at the end: one row per column of the uncut layer",
-               {{"x0", "m", "initial x of the column"},
-                {"u", "m", "lift of the column"},
-                {"s", "m", "arc length along the chip's centroid line"},
-                {"eps_p", "1", "column-mean equivalent plastic strain"},
-                {"cx", "m", "x of the column centroid"},
-                {"cy", "m", "y of the column centroid"}}}};
-  s.scalars = {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
+}
+
+std::vector<OutputSpec> cutting_scalars() {
+  return {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
                {"F_t", Dim::force_per_width, "mean thrust force per unit width (steady part)"},
                {"F_c_rake", Dim::force_per_width, "part of F_c from contacts on the rake face"},
                {"F_t_rake", Dim::force_per_width, "part of F_t from contacts on the rake face"},
@@ -505,97 +488,131 @@ SolverSpec detail::cutting_spec() {
                {"chip_segments", Dim::dimensionless, "peaks of the column-mean eps_p profile along the uncut layer after 2 t_u of cut (3-column mean, hysteresis 0.2 x mean)"},
                {"serration_pitch", Dim::length, "mean distance between eps_p peaks along the uncut layer (NaN below 2 peaks)"},
                {"serration_cv", Dim::dimensionless, "std / mean of the smoothed column-mean eps_p profile after 2 t_u of cut"}};
+}
+
+CuttingSetup cutting_setup_from(const Values& v) {
+  CuttingSetup c;
+  c.particles_over_height = static_cast<int>(v.at("particles_over_height"));
+  c.length = v.at("length");
+  c.height = v.at("height");
+  c.uncut_thickness = v.at(glossary::kDepthOfCut);
+  c.cut_distance = v.at("cut_distance");
+  c.speed = v.at(glossary::kCuttingSpeed);
+  c.friction = v.at(glossary::kFriction);
+  c.rake = v.at(glossary::kRakeAngle);
+  c.clearance = v.at(glossary::kClearanceAngle);
+  c.edge_radius = v.at("edge_radius");
+  c.enhanced_thermal = v.at("enhanced_thermal") != 0.0;
+  c.brookshaw_band = v.at("brookshaw_band") != 0.0;
+  c.fixed_layers = static_cast<int>(v.at("fixed_layers"));
+  c.steady_from = v.at("steady_from");
+  c.tool_conduction = v.at("tool_conduction") != 0.0;
+  c.snapshots = static_cast<int>(v.at("snapshots"));
+  c.penalty_contact = v.at("penalty_contact") != 0.0;
+  c.contact_offset = v.at("contact_offset");
+  c.tool_density = v.at("tool_density");
+  c.tool_depth = v.at("tool_depth");
+  c.tool_heat_share = v.at("tool_heat_share");
+  c.shear_cap = v.at("shear_cap") != 0.0;
+  c.contact_stiffness = v.at("contact_stiffness");
+  c.history_window = c.cut_distance / c.speed / 200.0;
+  return c;
+}
+
+RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
+  RunOutput out;
+  if (!r.checkpoint_error.empty())
+    out.notes.push_back("sph_cutting: a checkpoint could not be written (" + r.checkpoint_error + "); the run went on");
+  if (r.resumed_from_step > 0)
+    out.notes.push_back("sph_cutting: resumed from a checkpoint at step " + std::to_string(r.resumed_from_step) +
+                        " (the result equals an uninterrupted run with the same thread count)");
+  Table t;
+  t.name = "forces";
+  t.add("t", "s", r.t);
+  t.add("cut_distance", "m", r.cut);
+  t.add("F_c", "N/m", r.fc);
+  t.add("F_t", "N/m", r.ft);
+  out.tables.push_back(std::move(t));
+  Table chip;
+  chip.name = "chip";
+  chip.add("x0", "m", r.chip_x0);
+  chip.add("u", "m", r.chip_u);
+  chip.add("s", "m", r.chip_s);
+  chip.add("eps_p", "1", r.chip_eps);
+  chip.add("cx", "m", r.chip_cx);
+  chip.add("cy", "m", r.chip_cy);
+  out.tables.push_back(std::move(chip));
+  out.snapshots = r.snapshots;
+  if (!r.tool_snapshot.x.empty()) out.snapshots.push_back(r.tool_snapshot);
+  const double generated = r.plastic_heat + r.friction_heat;
+  const auto share = [generated](double q) { return generated > 0.0 ? q / generated : 0.0; };
+  out.scalars = {{"F_c", r.fc_mean}, {"F_t", r.ft_mean}, {"rake_temperature", r.rake_temperature},
+                 {"rake_temperature_avg", r.rake_temperature_avg},
+                 {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)},
+                 {"particles", static_cast<double>(r.particles)},
+                 {"tool_rake_temperature", r.tool_rake_temperature}, {"tool_T_max", r.tool_T_max},
+                 {"heat_generated", r.plastic_heat + r.friction_heat}, {"heat_imbalance", r.heat_imbalance},
+                 {"friction_heat", r.friction_heat},
+                 {"heat_lost_fraction", r.plastic_heat + r.friction_heat > 0.0 ? r.heat_lost / (r.plastic_heat + r.friction_heat) : 0.0},
+                 {"friction_heat_tool_share", r.friction_heat > 0.0 ? r.friction_heat_tool / r.friction_heat : 0.0},
+                 {"plastic_heat_below_fraction", r.plastic_heat > 0.0 ? r.plastic_heat_below / r.plastic_heat : 0.0},
+                 {"stored_layer_fraction", share(r.stored_layer)}, {"stored_below_fraction", share(r.stored_below)},
+                 {"stored_chip_fraction", share(r.stored_chip)}, {"stored_tool_fraction", share(r.stored_tool)},
+                 {"T_max_x", r.T_max_at.x()}, {"T_max_y", r.T_max_at.y()},
+                 {"chip_thickness", r.chip_thickness}, {"chip_T_mean", r.chip_T_mean}, {"chip_ratio", r.chip_thickness / c.uncut_thickness},
+                 {"chip_curl", r.chip_curl * 3.14159265358979323846 / 180.0}, {"chip_segments", r.chip_segments},
+                 {"serration_pitch", r.serration_pitch}, {"serration_cv", r.serration_cv},
+                 {"F_c_rake", r.force_rake.x()}, {"F_t_rake", r.force_rake.y()},
+                 {"F_c_edge", r.force_edge.x()}, {"F_t_edge", r.force_edge.y()},
+                 {"F_c_flank", r.force_flank.x()}, {"F_t_flank", r.force_flank.y()},
+                 {"rake_friction_ratio", r.rake_friction_ratio}, {"rake_slip_fraction", r.rake_slip_fraction}};
+  out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"rake_temperature_avg", "K"}, {"T_max", "K"},
+                      {"chip_height", "m"}, {"steps", "1"}, {"particles", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
+                      {"heat_generated", "J/m"}, {"heat_imbalance", "1"}, {"friction_heat", "J/m"}, {"heat_lost_fraction", "1"},
+                      {"friction_heat_tool_share", "1"}, {"plastic_heat_below_fraction", "1"}, {"stored_layer_fraction", "1"},
+                      {"stored_below_fraction", "1"}, {"stored_chip_fraction", "1"}, {"stored_tool_fraction", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
+                      {"chip_thickness", "m"}, {"chip_T_mean", "K"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},
+                      {"serration_pitch", "m"}, {"serration_cv", "1"},
+                      {"F_c_rake", "N/m"}, {"F_t_rake", "N/m"}, {"F_c_edge", "N/m"}, {"F_t_edge", "N/m"},
+                      {"F_c_flank", "N/m"}, {"F_t_flank", "N/m"}, {"rake_friction_ratio", "1"}, {"rake_slip_fraction", "1"}};
+  out.notes.push_back("Snapshots: the workpiece states in time order, then (if the tool conducts) the "
+                      "final tool particles with their temperature.");
+  out.notes.push_back("Tool is rigid; its particles conduct heat (k 88 W/mK, c_p 292 J/kgK, density "
+                      "assumed) and exchange heat with the workpiece by harmonic-mean Brookshaw pairs; "
+                      "the friction heat (eta = 1) is split between tool and chip by the effusivity partition (default). Stabiliser "
+                      "parameters (artificial viscosity 1/1, artificial stress 0.3, XSPH 0.5) are "
+                      "assumed, the paper does not list them.");
+  return out;
+}
+
+}  // namespace
+
+SolverSpec detail::cutting_spec() {
+  SolverSpec s;
+  s.name = "sph_cutting";
+  s.description = "Thermo-mechanical SPH orthogonal cutting of Ti6Al4V (rigid tool, Coulomb friction); "
+                  "reference (Brookshaw, adiabatic) or enhanced (FMFS + convection/radiation) thermal model";
+  s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Sec. 5.2, Fig. 4, Table 1";
+  s.params = cutting_params();
+  s.tables = {{"forces",
+               "tool force history (window means)",
+               {{"t", "s", "time"},
+                {"cut_distance", "m", "tool travel"},
+                {"F_c", "N/m", "cutting force per unit width"},
+                {"F_t", "N/m", "thrust force per unit width"}}},
+              {"chip",
+               "chip columns at the end: one row per column of the uncut layer",
+               {{"x0", "m", "initial x of the column"},
+                {"u", "m", "lift of the column"},
+                {"s", "m", "arc length along the chip's centroid line"},
+                {"eps_p", "1", "column-mean equivalent plastic strain"},
+                {"cx", "m", "x of the column centroid"},
+                {"cy", "m", "y of the column centroid"}}}};
+  s.scalars = cutting_scalars();
   s.checkpoints = true;
   s.run = [](const Values& v, const ProgressFn& progress) {
-    CuttingSetup c;
-    c.particles_over_height = static_cast<int>(v.at("particles_over_height"));
-    c.length = v.at("length");
-    c.height = v.at("height");
-    c.uncut_thickness = v.at(glossary::kDepthOfCut);
-    c.cut_distance = v.at("cut_distance");
-    c.speed = v.at(glossary::kCuttingSpeed);
-    c.friction = v.at(glossary::kFriction);
-    c.rake = v.at(glossary::kRakeAngle);
-    c.clearance = v.at(glossary::kClearanceAngle);
-    c.edge_radius = v.at("edge_radius");
-    c.enhanced_thermal = v.at("enhanced_thermal") != 0.0;
-    c.brookshaw_band = v.at("brookshaw_band") != 0.0;
-    c.fixed_layers = static_cast<int>(v.at("fixed_layers"));
-    c.steady_from = v.at("steady_from");
-    c.tool_conduction = v.at("tool_conduction") != 0.0;
-    c.snapshots = static_cast<int>(v.at("snapshots"));
-    c.penalty_contact = v.at("penalty_contact") != 0.0;
-    c.contact_offset = v.at("contact_offset");
-    c.tool_density = v.at("tool_density");
-    c.tool_depth = v.at("tool_depth");
-    c.tool_heat_share = v.at("tool_heat_share");
-    c.shear_cap = v.at("shear_cap") != 0.0;
-    c.contact_stiffness = v.at("contact_stiffness");
-    c.history_window = c.cut_distance / c.speed / 200.0;
-    const auto r = run_cutting(c, progress);
-    RunOutput out;
-    if (!r.checkpoint_error.empty())
-      out.notes.push_back("sph_cutting: a checkpoint could not be written (" + r.checkpoint_error + "); the run went on");
-    if (r.resumed_from_step > 0)
-      out.notes.push_back("sph_cutting: resumed from a checkpoint at step " + std::to_string(r.resumed_from_step) +
-                          " (the result equals an uninterrupted run with the same thread count)");
-    Table t;
-    t.name = "forces";
-    t.add("t", "s", r.t);
-    t.add("cut_distance", "m", r.cut);
-    t.add("F_c", "N/m", r.fc);
-    t.add("F_t", "N/m", r.ft);
-    out.tables.push_back(std::move(t));
-    Table chip;
-    chip.name = "chip";
-    chip.add("x0", "m", r.chip_x0);
-    chip.add("u", "m", r.chip_u);
-    chip.add("s", "m", r.chip_s);
-    chip.add("eps_p", "1", r.chip_eps);
-    chip.add("cx", "m", r.chip_cx);
-    chip.add("cy", "m", r.chip_cy);
-    out.tables.push_back(std::move(chip));
-    out.snapshots = r.snapshots;
-    if (!r.tool_snapshot.x.empty()) out.snapshots.push_back(r.tool_snapshot);
-    const double generated = r.plastic_heat + r.friction_heat;
-    const auto share = [generated](double q) { return generated > 0.0 ? q / generated : 0.0; };
-    out.scalars = {{"F_c", r.fc_mean}, {"F_t", r.ft_mean}, {"rake_temperature", r.rake_temperature},
-                   {"rake_temperature_avg", r.rake_temperature_avg},
-                   {"T_max", r.T_max}, {"chip_height", r.chip_height}, {"steps", static_cast<double>(r.steps)},
-                   {"particles", static_cast<double>(r.particles)},
-                   {"tool_rake_temperature", r.tool_rake_temperature}, {"tool_T_max", r.tool_T_max},
-                   {"heat_generated", r.plastic_heat + r.friction_heat}, {"heat_imbalance", r.heat_imbalance},
-                   {"friction_heat", r.friction_heat},
-                   {"heat_lost_fraction", r.plastic_heat + r.friction_heat > 0.0 ? r.heat_lost / (r.plastic_heat + r.friction_heat) : 0.0},
-                   {"friction_heat_tool_share", r.friction_heat > 0.0 ? r.friction_heat_tool / r.friction_heat : 0.0},
-                   {"plastic_heat_below_fraction", r.plastic_heat > 0.0 ? r.plastic_heat_below / r.plastic_heat : 0.0},
-                   {"stored_layer_fraction", share(r.stored_layer)}, {"stored_below_fraction", share(r.stored_below)},
-                   {"stored_chip_fraction", share(r.stored_chip)}, {"stored_tool_fraction", share(r.stored_tool)},
-                   {"T_max_x", r.T_max_at.x()}, {"T_max_y", r.T_max_at.y()},
-                   {"chip_thickness", r.chip_thickness}, {"chip_T_mean", r.chip_T_mean}, {"chip_ratio", r.chip_thickness / c.uncut_thickness},
-                   {"chip_curl", r.chip_curl * 3.14159265358979323846 / 180.0}, {"chip_segments", r.chip_segments},
-                   {"serration_pitch", r.serration_pitch}, {"serration_cv", r.serration_cv},
-                   {"F_c_rake", r.force_rake.x()}, {"F_t_rake", r.force_rake.y()},
-                   {"F_c_edge", r.force_edge.x()}, {"F_t_edge", r.force_edge.y()},
-                   {"F_c_flank", r.force_flank.x()}, {"F_t_flank", r.force_flank.y()},
-                   {"rake_friction_ratio", r.rake_friction_ratio}, {"rake_slip_fraction", r.rake_slip_fraction}};
-    out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"rake_temperature_avg", "K"}, {"T_max", "K"},
-                        {"chip_height", "m"}, {"steps", "1"}, {"particles", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
-                        {"heat_generated", "J/m"}, {"heat_imbalance", "1"}, {"friction_heat", "J/m"}, {"heat_lost_fraction", "1"},
-                        {"friction_heat_tool_share", "1"}, {"plastic_heat_below_fraction", "1"}, {"stored_layer_fraction", "1"},
-                        {"stored_below_fraction", "1"}, {"stored_chip_fraction", "1"}, {"stored_tool_fraction", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
-                        {"chip_thickness", "m"}, {"chip_T_mean", "K"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},
-                        {"serration_pitch", "m"}, {"serration_cv", "1"},
-                        {"F_c_rake", "N/m"}, {"F_t_rake", "N/m"}, {"F_c_edge", "N/m"}, {"F_t_edge", "N/m"},
-                        {"F_c_flank", "N/m"}, {"F_t_flank", "N/m"}, {"rake_friction_ratio", "1"}, {"rake_slip_fraction", "1"}};
-    out.notes.push_back("Snapshots: the workpiece states in time order, then (if the tool conducts) the "
-                        "final tool particles with their temperature.");
-    out.notes.push_back("Tool is rigid; its particles conduct heat (k 88 W/mK, c_p 292 J/kgK, density "
-                        "assumed) and exchange heat with the workpiece by harmonic-mean Brookshaw pairs; "
-                        "the friction heat (eta = 1) is split between tool and chip by the effusivity partition (default). Stabiliser "
-                        "parameters (artificial viscosity 1/1, artificial stress 0.3, XSPH 0.5) are "
-                        "assumed, the paper does not list them.");
-    return out;
+    const CuttingSetup c = cutting_setup_from(v);
+    return cutting_output(c, run_cutting(c, progress));
   };
   return s;
 }

@@ -841,6 +841,10 @@ int main(int argc, char** argv) {
   auto* run_ckpt = run->add_option("--checkpoint-minutes", checkpoint_minutes,
                   "With --run-cache: minutes of wall time between two checkpoints of a solver run that supports "
                   "them (MPM, SPH and EFG cutting; `cutbench describe SOLVER` says which); an interrupted run resumes from its last checkpoint (default 10)");
+  double max_memory_gib = kDefaultMaxRunBytes / 1073741824.0;
+  run->add_option("--max-memory", max_memory_gib,
+                  "GiB one solver run may need (its estimate from the parameters; a larger case is refused "
+                  "before anything runs; default 8)");
   run->add_flag("--ctest", ctest_mode, "Exit 77 (skip) when every selected case is NOT IMPLEMENTED");
   run->add_flag("--strict", strict, "Known failures fail the run too");
 
@@ -896,6 +900,7 @@ int main(int argc, char** argv) {
   runs->add_option("--series", runs_series, "Plan: only the runs of these series (repeatable)");
   runs->add_option("-j,--threads", threads, "OpenMP threads (with --compute)");
   runs->add_option("--checkpoint-minutes", checkpoint_minutes, "With --compute: minutes between two checkpoints (default 10)");
+  runs->add_option("--max-memory", max_memory_gib, "GiB one solver run may need (default 8)");
 
   std::vector<std::string> audit_ids;
   std::string audit_paper, audit_results = "results";
@@ -928,6 +933,10 @@ int main(int argc, char** argv) {
     if (!(checkpoint_minutes > 0.0 && checkpoint_minutes <= 10080.0)) {
       throw InputError("--checkpoint-minutes", "minutes in (0, 10080] (got " + fmt(checkpoint_minutes) + ")");
     }
+    if (!(max_memory_gib > 0.0 && max_memory_gib <= 1048576.0)) {
+      throw InputError("--max-memory", "GiB in (0, 1048576] (got " + fmt(max_memory_gib) + ")");
+    }
+    set_max_run_bytes(max_memory_gib * 1073741824.0);
     if (threads < 0 || threads > 1024) throw InputError("-j", "a number of threads in 1..1024 (got " + std::to_string(threads) + ")");
 #ifdef _OPENMP
     if (threads > 0) omp_set_num_threads(threads);

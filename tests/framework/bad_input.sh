@@ -131,6 +131,11 @@ x = "t"
 y = "Fc"')")"
   expect_cmd "describe an unknown solver" "name" describe mpm_cuting
   expect "a retired name of a shared quantity" "glossary name" run "$(typed_case nairn2015 gl mpm mpm_cutting '{ h = "1 mm" }')"
+  # resources: a run's footprint is estimated at load and refused above --max-memory (default 8 GiB)
+  expect "MPM run of 3e7 particles" "GiB" run "$(typed_case nairn2015 big mpm mpm_cutting '{ particles_through_chip = 200, width_factor = 200 }')"
+  expect "SPH run of 1.6e11 particles" "GiB" run "$(typed_case afrasiabi2021 big sph sph_cutting '{ particles_over_height = 400, length = "1 m", height = "1 um", t1 = "0.1 um", cut_distance = "1 mm" }')"
+  expect "EFG run of 1e10 nodes" "GiB" run "$(typed_case kahwash2018 big efg efg_cutting '{ spacing = "0.01 um", t1 = "0.025 um", work_length = "1.5 mm", work_height = "0.75 mm", notch = "0.25 mm" }')"
+  expect "max memory not positive" "--max-memory" run aghababaei2021/fig04 --max-memory 0
   expect_eval "eval option by an unknown name" "criterion" failure_envelope criterion=tsai plane=s11_s22
   expect_eval "eval option by its old code"    "plane"     failure_envelope criterion=hashin plane=0
 else

@@ -23,6 +23,12 @@ const std::vector<std::string> kCheckKinds = {"verification", "reproduction", "v
 
 namespace fs = std::filesystem;
 
+namespace {
+double g_max_run_bytes = kDefaultMaxRunBytes;
+}  // namespace
+void set_max_run_bytes(double bytes) { g_max_run_bytes = bytes; }
+double max_run_bytes() { return g_max_run_bytes; }
+
 const std::vector<std::string>& paper_ids() {
   // a paper is a directory of reference_data/ with an inventory of its figures and tables; its
   // cases live in benchmarks/<paper>/ (adding a paper needs no C++ edit)
@@ -744,11 +750,24 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
         ModelSpec check_spec{ss.model, "", "", *pspecs, {}, {}};
         ReferenceCache refs;
         const std::vector<Values> pts = series_points(ss, refs);
+        const SolverSpec* sv = ss.solver ? solvers.find(ss.model) : nullptr;
         for (const auto& p : pts) {
+          Values valid;
           try {
-            validate_params(check_spec, p);
+            valid = validate_params(check_spec, p);
           } catch (const InputError& e) {
             throw InputError(sw + "params." + e.field(), std::string(e.what()).substr(e.field().size() + 2));
+          }
+          if (sv && sv->footprint) {  // resources: refuse what cannot run on this machine before it starts
+            const Footprint f = sv->footprint(valid);
+            if (!(f.bytes <= max_run_bytes())) {
+              std::ostringstream os;
+              os.precision(3);
+              os << "a run of about " << f.points << " " << f.what << " needs about " << f.bytes / 1073741824.0
+                 << " GiB, more than the limit of " << max_run_bytes() / 1073741824.0
+                 << " GiB (cutbench run --max-memory GIB raises it)";
+              throw InputError(sw + "params", os.str());
+            }
           }
         }
       }

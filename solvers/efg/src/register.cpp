@@ -394,6 +394,13 @@ SolverSpec cutting_spec() {
                   {"dt", "s", "critical time step (Eq. 56)"}}}};
   cut.scalars = cutting_scalars();
   cut.checkpoints = true;
+  cut.footprint = [](const Values& v) {
+    // the node lattice (hx = spacing, hy about spacing); about 8 kB per node: MLS shape functions
+    // and derivatives of about 4 Gauss points per node over (2 support_factor + 1)^2 neighbours
+    const double hx = v.at("spacing"), nodes = (v.at("work_length") / hx + 1.0) * (v.at("work_height") / hx + 2.0);
+    const double support = 2.0 * v.at("support_factor") + 1.0;
+    return Footprint{nodes, nodes * (1024.0 + 4.0 * support * support * 3.0 * 8.0), "nodes"};
+  };
   cut.run = [](const Values& v, const ProgressFn& progress) {
     const CuttingSetup s = cutting_setup_from(v);
     const auto t0 = std::chrono::steady_clock::now();

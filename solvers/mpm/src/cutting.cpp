@@ -602,6 +602,17 @@ SolverSpec cutting_solver_spec() {
                    {"feedback_alpha", "1/s", "grid kinetic-energy feedback damping coefficient"}}}};
   spec.run = run_cutting;
   spec.checkpoints = true;
+  spec.footprint = [](const Values& v) {
+    // specimen (width_factor + tool) x (base_factor + 1 + chip room) in particles of size h / N,
+    // 4 particles per cell; about 0.6 kB per particle (fields, shape functions, scratch) and 0.3 kB
+    // per grid node (nodal fields, per-thread buffers)
+    const double n = v.at("particles_through_chip");
+    const double w = v.at("width_factor") + v.at("tool_length_factor");
+    const double particles = n * n * (v.at("width_factor") * (v.at("base_factor") + 1.0) +
+                                      v.at("tool_length_factor") * v.at("tool_height_factor"));
+    const double nodes = 0.25 * n * n * (w + 4.0) * (v.at("base_factor") + v.at("chip_room_factor") + 4.0);
+    return Footprint{particles, 600.0 * particles + 300.0 * nodes, "particles"};
+  };
   return spec;
 }
 

@@ -610,6 +610,13 @@ SolverSpec detail::cutting_spec() {
                 {"cy", "m", "y of the column centroid"}}}};
   s.scalars = cutting_scalars();
   s.checkpoints = true;
+  s.footprint = [](const Values& v) {
+    // the workpiece lattice (tool particles are fewer); about 2 kB per particle: state, rates,
+    // the neighbour list (about 30 neighbours in 2h) and the pair caches
+    const double n = v.at("particles_over_height");
+    const double particles = n * (v.at("length") / (v.at("height") / (n - 1.0)) + 1.0);
+    return Footprint{particles, 2048.0 * particles, "particles"};
+  };
   s.run = [](const Values& v, const ProgressFn& progress) {
     const CuttingSetup c = cutting_setup_from(v);
     return cutting_output(c, run_cutting(c, progress));

@@ -16,6 +16,13 @@ namespace cutbench::framework {
 
 using json = nlohmann::json;
 
+// The memory a single solver run may need, from its footprint estimate (SolverSpec::footprint):
+// a case with a larger run is refused at load, with the estimate (bad input, exit 2). Default
+// kDefaultMaxRunBytes; `cutbench run/runs --max-memory GIB` overrides it.
+constexpr double kDefaultMaxRunBytes = 8.0 * 1024 * 1024 * 1024;
+void set_max_run_bytes(double bytes);
+double max_run_bytes();
+
 // The papers of the suite: the directories of reference_data/ with an inventory, sorted.
 const std::vector<std::string>& paper_ids();
 bool is_paper_id(const std::string& id);

@@ -93,6 +93,14 @@ struct TableSpec {
   }
 };
 
+// The size of one run, estimated from its parameters before it starts: the number of particles
+// or nodes and the memory it will hold (an upper estimate: the solver's own arrays per point).
+struct Footprint {
+  double points = 0.0;  // particles or nodes
+  double bytes = 0.0;
+  std::string what;     // "particles", "nodes"
+};
+
 struct SolverSpec {
   std::string name;         // e.g. "mpm_cutting"
   std::string description;
@@ -101,6 +109,8 @@ struct SolverSpec {
   std::vector<OutputSpec> scalars;  // the scalar results a run reports
   std::vector<TableSpec> tables;    // the tables a run may return
   bool checkpoints = false;         // runs checkpoint and resume through the shared driver
+  // Footprint of a run from validated parameters (unset: small by construction, bounded ranges).
+  std::function<Footprint(const Values& params)> footprint;
   std::function<RunOutput(const Values& params, const ProgressFn& progress)> run;
 
   const TableSpec* table(const std::string& table_name) const {

@@ -15,6 +15,9 @@ if(CUTBENCH_FUZZ)  # every library instrumented for coverage; the harnesses link
   target_compile_options(cutbench_sanitize INTERFACE
     -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   target_link_options(cutbench_sanitize INTERFACE -fsanitize=address,undefined)
+elseif(CUTBENCH_TSAN)  # OpenMP synchronisation is made visible to TSan by LLVM's Archer (OMP_TOOL_LIBRARIES)
+  target_compile_options(cutbench_sanitize INTERFACE -fsanitize=thread -fno-omit-frame-pointer)
+  target_link_options(cutbench_sanitize INTERFACE -fsanitize=thread)
 elseif(CUTBENCH_SANITIZE)  # float-cast-overflow is not part of GCC's `undefined`
   target_compile_options(cutbench_sanitize INTERFACE
     -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=all)

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cutbench/common/declared.hpp"
 #include "cutbench/common/driver.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/common/glossary.hpp"
@@ -113,112 +114,101 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kDeg = M_PI / 180.0;
 }  // namespace
 
-std::vector<ParamSpec> cutting_params() {
-  return {
-      param(glossary::kDepthOfCut, Dim::length, "depth of cut h", 0.9e-3, 0.0, kInf, false),
-      param(glossary::kRakeAngle, Dim::angle, "tool rake angle alpha", 10.0 * kDeg, -30.0 * kDeg, 60.0 * kDeg),
-      param(glossary::kClearanceAngle, Dim::angle, "tool clearance angle", 5.0 * kDeg, 1.0 * kDeg, 30.0 * kDeg),
-      param("K", Dim::stress, "bulk modulus", 980e6, 0.0, kInf, false),
-      param("G", Dim::stress, "shear modulus", 376e6, 0.0, kInf, false),
-      param("rho", Dim::density, "density", 1000.0, 0.0, kInf, false),
-      param("sigma_y0", Dim::stress, "initial yield stress", 25e6, 0.0, kInf, false),
-      param("E_T", Dim::stress, "tangent modulus of the tensile curve (E_p = E E_T/(E - E_T))", 100e6, 0.0, kInf),
-      param("G_c", Dim::energy_per_area, "cohesive toughness (modes I and II)", 2000.0, 0.0, kInf, false),
-      param("sigma_c", Dim::stress, "cohesive strength (modes I and II)", 40e6, 0.0, kInf, false),
-      option_param("traction_law", "shape of the cohesive traction law",
-                   {{"cubic", "the cubic law of Eq. 3"}, {"triangular", "linear softening"}}, "cubic"),
-      param(glossary::kFriction, Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0),
-      param("pic_fraction", Dim::dimensionless, "PIC damping fraction (paper's 1 - beta): 1 = pure PIC", 1.0, 0.0, 1.0),
-      integer_param("position_order", "order of the particle position update (Eq. 10)", 2.0, 0.0, 2.0),
-      option_param("strain_update", "when the particle strain is updated",
-                   {{"usl", "update stress last: from the updated grid velocities"},
-                    {"musl", "modified USL: from re-extrapolated particle momenta"},
-                    {"blend", "experimental: L = (L_USL + L_MUSL)/2"}},
-                   "usl"),
-      switch_param("musl_recontact",
-                   "MUSL only: re-apply tool/crack contact to the re-extrapolated momenta (false: skip it, diagnostic)",
-                   true),
-      integer_param("particles_through_chip", "particles through the depth of cut", 15.0, 2.0, 200.0),
-      param("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0),
-      param("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
-      param("free_crack_factor", Dim::dimensionless, "traction-free start of the crack / h", 2.0, 0.0, 200.0),
-      param("base_factor", Dim::dimensionless, "depth below the cut plane / h", 3.0, 0.25, 50.0),
-      param("tool_height_factor", Dim::dimensionless, "tool height above the cut plane / h", 4.0, 1.0, 50.0),
-      param("tool_length_factor", Dim::dimensionless, "tool length behind the tip / h", 4.0, 1.0, 50.0),
-      param("chip_room_factor", Dim::dimensionless, "grid height above the cut plane / h", 12.0, 2.0, 100.0),
-      param(glossary::kCuttingSpeed, Dim::velocity, "cutting speed V", 2.0, 0.0, 1000.0, false),
-      param("ramp_fraction", Dim::dimensionless, "fraction of the run over which the speed ramps 0 -> V", 0.3, 0.0, 1.0),
-      param("total_time", Dim::time, "simulated time", 8e-3, 0.0, kInf, false),
-      param("output_interval", Dim::time, "force-history interval (0: total_time/400)", 0.0, 0.0, kInf),
-      param("steady_start_fraction", Dim::dimensionless, "steady window starts at this fraction of the run", 0.5,
-           0.0, 1.0),
-      param("steady_end_fraction", Dim::dimensionless, "steady window ends at this fraction of the run", 1.0, 0.0,
-           1.0),
-      param("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 100.0, 0.0,
-           1e9),
-      // at most NairnMPM's default time-step factor (0.5 of the cell crossing time): the explicit
-      // update with GIMP shape functions, contact and large strains diverges well before the
-      // linear limit 1 (cfl = 0.99 sends particles off the grid)
-      param("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 0.5, false),
-      option_param("contact_detection", "when a tool/material node pair is in contact",
-                   {{"velocity", "the approach-velocity test only"},
-                    {"nodal_gap", "nodal centres of mass closer than contact_gap_factor*dx"},
-                    {"domains", "particle domains touch (within contact_gap_factor*dx)"}},
-                   "nodal_gap"),
-      param("contact_gap_factor", Dim::dimensionless, "contact distance / tolerance in cells (see contact_detection)",
-           1.0, 0.0, 10.0),
-      integer_param("snapshots", "number of particle snapshots (evenly spaced, last at the end)", 4.0, 0.0, 1000.0),
-      integer_param("threads", "OpenMP threads (0 = OMP_NUM_THREADS)", 0.0, 0.0, 1024.0),
-  };
+// Every parameter of mpm_cutting, declared once with where it goes in the setup (or read by the
+// runner from Values: output interval, steady window, snapshots).
+const DeclaredParams<CuttingSetup>& cutting_declaration() {
+  using S = CuttingSetup;
+  static const DeclaredParams<S> d = [] {
+    DeclaredParams<S> p;
+    p.bind(param(glossary::kDepthOfCut, Dim::length, "depth of cut h", 0.9e-3, 0.0, kInf, false), &S::h)
+        .bind(param(glossary::kRakeAngle, Dim::angle, "tool rake angle alpha", 10.0 * kDeg, -30.0 * kDeg, 60.0 * kDeg), &S::rake)
+        .bind(param(glossary::kClearanceAngle, Dim::angle, "tool clearance angle", 5.0 * kDeg, 1.0 * kDeg, 30.0 * kDeg), &S::clearance)
+        .add(param("K", Dim::stress, "bulk modulus", 980e6, 0.0, kInf, false), [](S& s, double v) { s.material.K = v; })
+        .add(param("G", Dim::stress, "shear modulus", 376e6, 0.0, kInf, false), [](S& s, double v) { s.material.G = v; })
+        .add(param("rho", Dim::density, "density", 1000.0, 0.0, kInf, false), [](S& s, double v) { s.material.rho = v; })
+        .add(param("sigma_y0", Dim::stress, "initial yield stress", 25e6, 0.0, kInf, false),
+             [](S& s, double v) { s.material.sigma_y0 = v; })
+        .add(param("E_T", Dim::stress, "tangent modulus of the tensile curve (E_p = E E_T/(E - E_T))", 100e6, 0.0, kInf),
+             [](S& s, double v) {  // after K and G (declared before it)
+               const double E = s.material.youngs();
+               if (v >= E) throw InputError("E_T", "must be below the Young's modulus E = 9KG/(3K+G)");
+               s.material.Ep = HyperelasticJ2::plastic_modulus(E, v);
+             })
+        .bind(param("G_c", Dim::energy_per_area, "cohesive toughness (modes I and II)", 2000.0, 0.0, kInf, false), &S::G_c)
+        .bind(param("sigma_c", Dim::stress, "cohesive strength (modes I and II)", 40e6, 0.0, kInf, false), &S::sigma_c)
+        .add(option_param("traction_law", "shape of the cohesive traction law",
+                          {{"cubic", "the cubic law of Eq. 3"}, {"triangular", "linear softening"}}, "cubic"),
+             [](S& s, double v) { s.law = v == 0.0 ? TractionLawType::cubic : TractionLawType::triangular; })
+        .bind(param(glossary::kFriction, Dim::dimensionless, "Coulomb friction, tool/material", 0.0, 0.0, 5.0), &S::mu)
+        .add(param("pic_fraction", Dim::dimensionless, "PIC damping fraction (paper's 1 - beta): 1 = pure PIC", 1.0, 0.0, 1.0),
+             [](S& s, double v) { s.numerics.pic_fraction = v; })
+        .add(integer_param("position_order", "order of the particle position update (Eq. 10)", 2.0, 0.0, 2.0),
+             [](S& s, double v) { s.numerics.position_order = static_cast<int>(v); })
+        .add(option_param("strain_update", "when the particle strain is updated",
+                          {{"usl", "update stress last: from the updated grid velocities"},
+                           {"musl", "modified USL: from re-extrapolated particle momenta"},
+                           {"blend", "experimental: L = (L_USL + L_MUSL)/2"}},
+                          "usl"),
+             [](S& s, double v) {
+               s.numerics.musl = v >= 1.0;
+               s.numerics.blend = v == 2.0;
+             })
+        .add(switch_param("musl_recontact",
+                          "MUSL only: re-apply tool/crack contact to the re-extrapolated momenta (false: skip it, diagnostic)",
+                          true),
+             [](S& s, double v) { s.numerics.musl_recontact = v == 1.0; })
+        .bind(integer_param("particles_through_chip", "particles through the depth of cut", 15.0, 2.0, 200.0),
+              &S::particles_through_chip)
+        .bind(param("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0), &S::width_factor)
+        .bind(param("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
+              &S::precrack_factor)
+        .bind(param("free_crack_factor", Dim::dimensionless, "traction-free start of the crack / h", 2.0, 0.0, 200.0),
+              &S::free_crack_factor)
+        .bind(param("base_factor", Dim::dimensionless, "depth below the cut plane / h", 3.0, 0.25, 50.0), &S::base_factor)
+        .bind(param("tool_height_factor", Dim::dimensionless, "tool height above the cut plane / h", 4.0, 1.0, 50.0),
+              &S::tool_height_factor)
+        .bind(param("tool_length_factor", Dim::dimensionless, "tool length behind the tip / h", 4.0, 1.0, 50.0),
+              &S::tool_length_factor)
+        .bind(param("chip_room_factor", Dim::dimensionless, "grid height above the cut plane / h", 12.0, 2.0, 100.0),
+              &S::chip_room_factor)
+        .bind(param(glossary::kCuttingSpeed, Dim::velocity, "cutting speed V", 2.0, 0.0, 1000.0, false), &S::speed)
+        .bind(param("ramp_fraction", Dim::dimensionless, "fraction of the run over which the speed ramps 0 -> V", 0.3, 0.0, 1.0),
+              &S::ramp_fraction)
+        .bind(param("total_time", Dim::time, "simulated time", 8e-3, 0.0, kInf, false), &S::total_time)
+        .declare(param("output_interval", Dim::time, "force-history interval (0: total_time/400)", 0.0, 0.0, kInf))
+        .declare(param("steady_start_fraction", Dim::dimensionless, "steady window starts at this fraction of the run", 0.5,
+                       0.0, 1.0))
+        .declare(param("steady_end_fraction", Dim::dimensionless, "steady window ends at this fraction of the run", 1.0,
+                       0.0, 1.0))
+        .bind(param("feedback_gain", Dim::dimensionless, "grid-KE feedback damping gain during the ramp (0 = off)", 100.0,
+                    0.0, 1e9),
+              &S::feedback_gain)
+        // at most NairnMPM's default time-step factor (0.5 of the cell crossing time): the explicit
+        // update with GIMP shape functions, contact and large strains diverges well before the
+        // linear limit 1 (cfl = 0.99 sends particles off the grid)
+        .add(param("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 0.5, false),
+             [](S& s, double v) { s.numerics.cfl = v; })
+        .add(option_param("contact_detection", "when a tool/material node pair is in contact",
+                          {{"velocity", "the approach-velocity test only"},
+                           {"nodal_gap", "nodal centres of mass closer than contact_gap_factor*dx"},
+                           {"domains", "particle domains touch (within contact_gap_factor*dx)"}},
+                          "nodal_gap"),
+             [](S& s, double v) { s.contact_detection = static_cast<int>(v); })
+        .bind(param("contact_gap_factor", Dim::dimensionless, "contact distance / tolerance in cells (see contact_detection)",
+                    1.0, 0.0, 10.0),
+              &S::contact_gap_factor)
+        .declare(integer_param("snapshots", "number of particle snapshots (evenly spaced, last at the end)", 4.0, 0.0, 1000.0))
+        .add(integer_param("threads", "OpenMP threads (0 = OMP_NUM_THREADS)", 0.0, 0.0, 1024.0),
+             [](S& s, double v) { s.numerics.threads = static_cast<int>(v); });
+    return p;
+  }();
+  return d;
 }
 
+std::vector<ParamSpec> cutting_params() { return cutting_declaration().specs(); }
+
 CuttingSetup cutting_setup_from(const Values& v) {
-  CuttingSetup s;
-  s.h = v.at(glossary::kDepthOfCut);
-  s.rake = v.at(glossary::kRakeAngle);
-  s.clearance = v.at(glossary::kClearanceAngle);
-  s.material.K = v.at("K");
-  s.material.G = v.at("G");
-  s.material.rho = v.at("rho");
-  s.material.sigma_y0 = v.at("sigma_y0");
-  const double E = s.material.youngs();
-  if (v.at("E_T") >= E) throw InputError("E_T", "must be below the Young's modulus E = 9KG/(3K+G)");
-  s.material.Ep = HyperelasticJ2::plastic_modulus(E, v.at("E_T"));
-  s.G_c = v.at("G_c");
-  s.sigma_c = v.at("sigma_c");
-  const double law = v.at("traction_law");
-  if (law != 0.0 && law != 1.0) throw InputError("traction_law", "must be 0 (cubic) or 1 (triangular)");
-  s.law = law == 0.0 ? TractionLawType::cubic : TractionLawType::triangular;
-  s.mu = v.at(glossary::kFriction);
-  s.numerics.pic_fraction = v.at("pic_fraction");
-  const double order = v.at("position_order");
-  if (order != 0.0 && order != 1.0 && order != 2.0) throw InputError("position_order", "must be 0, 1 or 2");
-  s.numerics.position_order = static_cast<int>(order);
-  const double su = v.at("strain_update");
-  if (su != 0.0 && su != 1.0 && su != 2.0) throw InputError("strain_update", "must be 0 (USL), 1 (MUSL) or 2 (blend)");
-  s.numerics.musl = su >= 1.0;
-  s.numerics.blend = su == 2.0;
-  const double rc = v.at("musl_recontact");
-  if (rc != 0.0 && rc != 1.0) throw InputError("musl_recontact", "must be 0 or 1");
-  s.numerics.musl_recontact = rc == 1.0;
-  s.numerics.cfl = v.at("cfl");
-  s.numerics.threads = static_cast<int>(v.at("threads"));
-  s.particles_through_chip = v.at("particles_through_chip");
-  s.width_factor = v.at("width_factor");
-  s.precrack_factor = v.at("precrack_factor");
-  s.free_crack_factor = v.at("free_crack_factor");
-  s.base_factor = v.at("base_factor");
-  s.tool_height_factor = v.at("tool_height_factor");
-  s.tool_length_factor = v.at("tool_length_factor");
-  s.chip_room_factor = v.at("chip_room_factor");
-  s.speed = v.at(glossary::kCuttingSpeed);
-  s.ramp_fraction = v.at("ramp_fraction");
-  s.total_time = v.at("total_time");
-  s.feedback_gain = v.at("feedback_gain");
-  s.contact_gap_factor = v.at("contact_gap_factor");
-  const double det = v.at("contact_detection");
-  if (det != 0.0 && det != 1.0 && det != 2.0) throw InputError("contact_detection", "must be 0, 1 or 2");
-  s.contact_detection = static_cast<int>(det);
+  const CuttingSetup s = cutting_declaration().make(v);
   if (s.free_crack_factor > s.precrack_factor) throw InputError("free_crack_factor", "must not exceed precrack_factor");
   if (s.precrack_factor > s.width_factor) throw InputError("precrack_factor", "must not exceed width_factor");
   return s;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <map>
 
+#include "cutbench/common/declared.hpp"
 #include "cutbench/common/driver.hpp"
 #include "cutbench/common/glossary.hpp"
 #include "cutbench/common/checkpoint.hpp"
@@ -421,34 +422,41 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
 namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-std::vector<ParamSpec> cutting_params() {
-  const CuttingSetup def;
-  return {
-      integer_param("particles_over_height", "particles over the workpiece height", def.particles_over_height, 4, 400),
-      param("length", Dim::length, "workpiece length", def.length, 1e-6, 1.0),
-      param("height", Dim::length, "workpiece height", def.height, 1e-6, 1.0),
-      param(glossary::kDepthOfCut, Dim::length, "uncut chip thickness t_u", def.uncut_thickness, 1e-7, 1.0),
-      param("cut_distance", Dim::length, "cut distance", def.cut_distance, 1e-7, 1.0),
-      param(glossary::kCuttingSpeed, Dim::velocity, "cutting speed v_c", def.speed, 1e-3, 1e3),
-      param(glossary::kFriction, Dim::dimensionless, "Coulomb friction coefficient", def.friction, 0.0, 2.0),
-      param(glossary::kRakeAngle, Dim::angle, "rake angle", def.rake, -60 * kDeg, 60 * kDeg),
-      param(glossary::kClearanceAngle, Dim::angle, "clearance angle", def.clearance, 0.5 * kDeg, 45 * kDeg),
-      param("edge_radius", Dim::length, "cutting-edge radius", def.edge_radius, 0.0, 1e-3),
-      switch_param("enhanced_thermal", "true: FMFS + convection/radiation (paper); false: the reference model", true),
-      switch_param("brookshaw_band", "true: Brookshaw on a 2h band at surfaces (energy-conserving); false: the paper's mix (Brookshaw on surface particles only)", true),
-      integer_param("fixed_layers", "clamped particle layers at the bottom and the far end", def.fixed_layers, 1, 20),
-      switch_param("tool_conduction", "tool particles conduct heat", true),
-      param("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5),
-      param("tool_depth", Dim::length, "size of the discretised tool band around the edge", def.tool_depth, 1e-6, 1.0),
-      switch_param("penalty_contact", "true: penalty + stick-slip friction; false: velocity-level contact", true),
-      param("contact_offset", Dim::dimensionless, "contact surface offset in particle spacings", def.contact_offset, 0.0, 1.0),
-      integer_param("snapshots", "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0),
-      param("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99),
-      param("tool_heat_share", Dim::dimensionless, "share of the friction heat put into the tool; -1: effusivity partition sqrt(k rho c) (default)", def.tool_heat_share, -1.0, 1.0),
-      param("contact_stiffness", Dim::dimensionless, "penalty contact stiffness alpha (f_N = -alpha m g / dt^2; assumed, not in the paper)", def.contact_stiffness, 0.001, 1.0),
-      switch_param("shear_cap", "true: cap the friction stress at the chip's shear flow stress (Zorev); false: Coulomb only (paper)", false),
-  };
+// Every parameter of sph_cutting, declared once with its member of the setup.
+const DeclaredParams<CuttingSetup>& cutting_declaration() {
+  using S = CuttingSetup;
+  static const DeclaredParams<S> d = [] {
+    const S def;
+    DeclaredParams<S> p;
+    p.bind(integer_param("particles_over_height", "particles over the workpiece height", def.particles_over_height, 4, 400), &S::particles_over_height)
+        .bind(param("length", Dim::length, "workpiece length", def.length, 1e-6, 1.0), &S::length)
+        .bind(param("height", Dim::length, "workpiece height", def.height, 1e-6, 1.0), &S::height)
+        .bind(param(glossary::kDepthOfCut, Dim::length, "uncut chip thickness t_u", def.uncut_thickness, 1e-7, 1.0), &S::uncut_thickness)
+        .bind(param("cut_distance", Dim::length, "cut distance", def.cut_distance, 1e-7, 1.0), &S::cut_distance)
+        .bind(param(glossary::kCuttingSpeed, Dim::velocity, "cutting speed v_c", def.speed, 1e-3, 1e3), &S::speed)
+        .bind(param(glossary::kFriction, Dim::dimensionless, "Coulomb friction coefficient", def.friction, 0.0, 2.0), &S::friction)
+        .bind(param(glossary::kRakeAngle, Dim::angle, "rake angle", def.rake, -60 * kDeg, 60 * kDeg), &S::rake)
+        .bind(param(glossary::kClearanceAngle, Dim::angle, "clearance angle", def.clearance, 0.5 * kDeg, 45 * kDeg), &S::clearance)
+        .bind(param("edge_radius", Dim::length, "cutting-edge radius", def.edge_radius, 0.0, 1e-3), &S::edge_radius)
+        .bind(switch_param("enhanced_thermal", "true: FMFS + convection/radiation (paper); false: the reference model", true), &S::enhanced_thermal)
+        .bind(switch_param("brookshaw_band", "true: Brookshaw on a 2h band at surfaces (energy-conserving); false: the paper's mix (Brookshaw on surface particles only)", true), &S::brookshaw_band)
+        .bind(integer_param("fixed_layers", "clamped particle layers at the bottom and the far end", def.fixed_layers, 1, 20), &S::fixed_layers)
+        .bind(switch_param("tool_conduction", "tool particles conduct heat", true), &S::tool_conduction)
+        .bind(param("tool_density", Dim::density, "tool density (not in the paper; WC-Co assumed)", def.tool_density, 1.0, 1e5), &S::tool_density)
+        .bind(param("tool_depth", Dim::length, "size of the discretised tool band around the edge", def.tool_depth, 1e-6, 1.0), &S::tool_depth)
+        .bind(switch_param("penalty_contact", "true: penalty + stick-slip friction; false: velocity-level contact", true), &S::penalty_contact)
+        .bind(param("contact_offset", Dim::dimensionless, "contact surface offset in particle spacings", def.contact_offset, 0.0, 1.0), &S::contact_offset)
+        .bind(integer_param("snapshots", "number of workpiece snapshots (equally spaced, last at the end)", 1.0, 1.0, 1000.0), &S::snapshots)
+        .bind(param("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99), &S::steady_from)
+        .bind(param("tool_heat_share", Dim::dimensionless, "share of the friction heat put into the tool; -1: effusivity partition sqrt(k rho c) (default)", def.tool_heat_share, -1.0, 1.0), &S::tool_heat_share)
+        .bind(param("contact_stiffness", Dim::dimensionless, "penalty contact stiffness alpha (f_N = -alpha m g / dt^2; assumed, not in the paper)", def.contact_stiffness, 0.001, 1.0), &S::contact_stiffness)
+        .bind(switch_param("shear_cap", "true: cap the friction stress at the chip's shear flow stress (Zorev); false: Coulomb only (paper)", false), &S::shear_cap);
+    return p;
+  }();
+  return d;
 }
+
+std::vector<ParamSpec> cutting_params() { return cutting_declaration().specs(); }
 
 std::vector<OutputSpec> cutting_scalars() {
   return {{"F_c", Dim::force_per_width, "mean cutting force per unit width (steady part)"},
@@ -491,30 +499,7 @@ std::vector<OutputSpec> cutting_scalars() {
 }
 
 CuttingSetup cutting_setup_from(const Values& v) {
-  CuttingSetup c;
-  c.particles_over_height = static_cast<int>(v.at("particles_over_height"));
-  c.length = v.at("length");
-  c.height = v.at("height");
-  c.uncut_thickness = v.at(glossary::kDepthOfCut);
-  c.cut_distance = v.at("cut_distance");
-  c.speed = v.at(glossary::kCuttingSpeed);
-  c.friction = v.at(glossary::kFriction);
-  c.rake = v.at(glossary::kRakeAngle);
-  c.clearance = v.at(glossary::kClearanceAngle);
-  c.edge_radius = v.at("edge_radius");
-  c.enhanced_thermal = v.at("enhanced_thermal") != 0.0;
-  c.brookshaw_band = v.at("brookshaw_band") != 0.0;
-  c.fixed_layers = static_cast<int>(v.at("fixed_layers"));
-  c.steady_from = v.at("steady_from");
-  c.tool_conduction = v.at("tool_conduction") != 0.0;
-  c.snapshots = static_cast<int>(v.at("snapshots"));
-  c.penalty_contact = v.at("penalty_contact") != 0.0;
-  c.contact_offset = v.at("contact_offset");
-  c.tool_density = v.at("tool_density");
-  c.tool_depth = v.at("tool_depth");
-  c.tool_heat_share = v.at("tool_heat_share");
-  c.shear_cap = v.at("shear_cap") != 0.0;
-  c.contact_stiffness = v.at("contact_stiffness");
+  CuttingSetup c = cutting_declaration().make(v);
   c.history_window = c.cut_distance / c.speed / 200.0;
   return c;
 }

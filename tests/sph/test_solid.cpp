@@ -144,7 +144,7 @@ BOOST_AUTO_TEST_CASE(adiabatic_plastic_heating) {
 
 // A non-finite temperature must stop the run with NumericalError at the next conduction update
 // (it would otherwise turn the J-C flow stress into NaN, switch off yielding and let the run finish
-// with garbage forces: the session-9 mu = 0.65 full-tier series).
+// with garbage forces, as a mu = 0.65 full-tier series once did).
 BOOST_AUTO_TEST_CASE(non_finite_temperature_stops_the_run) {
   const double dx = 1e-5;
   const auto x = square_lattice(8, dx);

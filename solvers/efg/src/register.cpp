@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "cutbench/common/declared.hpp"
 #include "cutbench/common/glossary.hpp"
 #include "cutbench/common/solver.hpp"
 #include "cutbench/efg/register.hpp"
@@ -164,55 +165,71 @@ SolverSpec patch_spec() {
   return patch;
 }
 
-std::vector<ParamSpec> cutting_params() {
-  const double inf = HUGE_VAL;
-  const double pi = std::acos(-1.0);
-  std::vector<ParamSpec> params = material_params();
-  for (auto q : {p("theta", Dim::angle, "fibre angle: fibres along (cos, sin) with the tool moving +x", pi / 6, 0, pi),
-                 analytic::criterion_param("larc02"),
-                 p("X_T", Dim::stress, "fibre tensile strength (Table 2)", 697.8e6, 0, inf),
-                 p("X_C", Dim::stress, "fibre compressive strength (Table 2)", 443.76e6, 0, inf),
-                 p("Y_T", Dim::stress, "transverse tensile strength (Table 2)", 89.7216e6, 0, inf),
-                 p("Y_C", Dim::stress, "transverse compressive strength (Table 2)", 148.33e6, 0, inf),
-                 p("S_L", Dim::stress, "in-plane shear strength (Table 2)", 33.1e6, 0, inf),
-                 p(glossary::kDepthOfCut, Dim::length, "depth of cut (Table 3: 0.25 mm)", 0.25e-3, 0, inf),
-                 p(glossary::kRakeAngle, Dim::angle, "rake angle (Table 3: 0)", 0.0, -pi / 4, pi / 3),
-                 p("work_length", Dim::length, "workpiece length (assumption)", 1.5e-3, 0, inf),
-                 p("work_height", Dim::length, "workpiece height (assumption)", 0.75e-3, 0, inf),
-                 p("notch", Dim::length, "already-cut length: the cut starts inside the workpiece", 0.25e-3, 0, inf),
-                 p("spacing", Dim::length, "nodal spacing along x", 0.05e-3, 0, inf),
-                 p("support_factor", Dim::dimensionless, "domain of influence / nodal spacing", 2.0, 1.2, 4),
-                 p(glossary::kCuttingSpeed, Dim::velocity, "cutting speed (Table 3: 3800 mm/min)", 3800e-3 / 60.0, 0, inf),
-                 p("time_scale", Dim::dimensionless, "tool speed multiplier (time scaling)", 50, 1, 1e4),
-                 p("travel", Dim::length, "maximum tool travel after first contact", 0.3e-3, 0, inf),
-                 p("ramp_transits", Dim::dimensionless, "tool speed ramp, in wave transits of the workpiece height", 50, 0, 1e4),
-                 p(glossary::kFriction, Dim::dimensionless, "rake-face friction coefficient (assumption)", 0.3, 0, 2),
-                 p(glossary::kClearanceAngle, Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4),
-                 p("edge_radius", Dim::length, "cutting-edge radius (assumption, not in the paper; 0: sharp)", 0.0, 0, inf),
-                 p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1),
-                 option_param("degradation", "stiffness degradation of failed material",
+// Every parameter of efg_cutting, declared once with its member of the setup.
+const DeclaredParams<CuttingSetup>& cutting_declaration() {
+  using S = CuttingSetup;
+  static const DeclaredParams<S> d = [] {
+    const double inf = HUGE_VAL;
+    const double pi = std::acos(-1.0);
+    DeclaredParams<S> decl;
+    const auto m = material_params();  // E1, E2, nu12, G12, rho
+    decl.add(m[0], [](S& s, double v) { s.material.E1 = v; })
+        .add(m[1], [](S& s, double v) { s.material.E2 = v; })
+        .add(m[2], [](S& s, double v) { s.material.nu12 = v; })
+        .add(m[3], [](S& s, double v) { s.material.G12 = v; })
+        .add(m[4], [](S& s, double v) { s.material.rho = v; })
+        .bind(p("theta", Dim::angle, "fibre angle: fibres along (cos, sin) with the tool moving +x", pi / 6, 0, pi), &S::theta)
+        .bind(analytic::criterion_param("larc02"), &S::criterion)
+        .add(p("X_T", Dim::stress, "fibre tensile strength (Table 2)", 697.8e6, 0, inf),
+             [](S& s, double v) { s.lamina.X_T = v; })
+        .add(p("X_C", Dim::stress, "fibre compressive strength (Table 2)", 443.76e6, 0, inf),
+             [](S& s, double v) { s.lamina.X_C = v; })
+        .add(p("Y_T", Dim::stress, "transverse tensile strength (Table 2)", 89.7216e6, 0, inf),
+             [](S& s, double v) { s.lamina.Y_T = v; })
+        .add(p("Y_C", Dim::stress, "transverse compressive strength (Table 2)", 148.33e6, 0, inf),
+             [](S& s, double v) { s.lamina.Y_C = v; })
+        .add(p("S_L", Dim::stress, "in-plane shear strength (Table 2)", 33.1e6, 0, inf),
+             [](S& s, double v) { s.lamina.S_L = v; })
+        .bind(p(glossary::kDepthOfCut, Dim::length, "depth of cut (Table 3: 0.25 mm)", 0.25e-3, 0, inf), &S::depth)
+        .bind(p(glossary::kRakeAngle, Dim::angle, "rake angle (Table 3: 0)", 0.0, -pi / 4, pi / 3), &S::rake)
+        .bind(p("work_length", Dim::length, "workpiece length (assumption)", 1.5e-3, 0, inf), &S::work_length)
+        .bind(p("work_height", Dim::length, "workpiece height (assumption)", 0.75e-3, 0, inf), &S::work_height)
+        .bind(p("notch", Dim::length, "already-cut length: the cut starts inside the workpiece", 0.25e-3, 0, inf), &S::notch)
+        .bind(p("spacing", Dim::length, "nodal spacing along x", 0.05e-3, 0, inf), &S::spacing)
+        .bind(p("support_factor", Dim::dimensionless, "domain of influence / nodal spacing", 2.0, 1.2, 4), &S::support_factor)
+        .bind(p(glossary::kCuttingSpeed, Dim::velocity, "cutting speed (Table 3: 3800 mm/min)", 3800e-3 / 60.0, 0, inf), &S::speed)
+        .bind(p("time_scale", Dim::dimensionless, "tool speed multiplier (time scaling)", 50, 1, 1e4), &S::time_scale)
+        .bind(p("travel", Dim::length, "maximum tool travel after first contact", 0.3e-3, 0, inf), &S::travel)
+        .bind(p("ramp_transits", Dim::dimensionless, "tool speed ramp, in wave transits of the workpiece height", 50, 0, 1e4), &S::ramp_transits)
+        .bind(p(glossary::kFriction, Dim::dimensionless, "rake-face friction coefficient (assumption)", 0.3, 0, 2), &S::mu)
+        .bind(p(glossary::kClearanceAngle, Dim::angle, "clearance angle (assumption)", 7.0 * pi / 180.0, 0, pi / 4), &S::clearance)
+        .bind(p("edge_radius", Dim::length, "cutting-edge radius (assumption, not in the paper; 0: sharp)", 0.0, 0, inf), &S::edge_radius)
+        .bind(p("residual", Dim::dimensionless, "residual fraction of failed moduli", 0.01, 0, 1), &S::residual)
+        .bind(option_param("degradation", "stiffness degradation of failed material",
                               {{"sudden", "failed moduli x residual"}, {"mode_factors", "mode factors of Camanho-Matthews/Tserpes"}},
-                              "mode_factors"),
-                 option_param("erosion", "separation of failed material",
+                              "mode_factors"), &S::degradation)
+        .bind(option_param("erosion", "separation of failed material",
                               {{"none", "no separation"}, {"fibre_and_matrix", "fibre and matrix failed"}, {"either", "fibre or matrix failed"}},
-                              "fibre_and_matrix"),
-                 p("collapse_ratio", Dim::dimensionless,
+                              "fibre_and_matrix"), &S::erosion)
+        .bind(p("collapse_ratio", Dim::dimensionless,
                    "collapse erosion: failed material whose nodes come closer than this x the initial spacing is eroded (0: off)",
-                   0.1, 0, 0.99),
-                 switch_param("visibility", "visibility criterion across the notch and the cut line", true),
-                 p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99),
-                 integer_param("drop_window", "steps of the running mean of dt", 200, 1, 1e6),
-                 p("min_travel", Dim::length, "no chip-completion detection before this travel", 0.0, 0, inf),
-                 option_param("completion_guard", "when a drop of the time step counts as chip completion",
+                   0.1, 0, 0.99), &S::collapse_ratio)
+        .bind(switch_param("visibility", "visibility criterion across the notch and the cut line", true), &S::visibility)
+        .bind(p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99), &S::drop)
+        .bind(integer_param("drop_window", "steps of the running mean of dt", 200, 1, 1e6), &S::drop_window)
+        .bind(p("min_travel", Dim::length, "no chip-completion detection before this travel", 0.0, 0, inf), &S::min_travel)
+        .bind(option_param("completion_guard", "when a drop of the time step counts as chip completion",
                               {{"always", "at any drop"}, {"damaged_path", "once damaged Gauss points connect the edge and the free surface"},
                                {"eroded_path", "once eroded Gauss points ahead of the edge connect the edge and the free surface"}},
-                              "eroded_path"),
-                 p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0),
-                 integer_param("snapshots", "damage snapshots kept (k/n of the run)", 3, 0, 20)}) {
-    params.push_back(q);
-  }
-  return params;
+                              "eroded_path"), &S::completion_guard)
+        .bind(p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0), &S::cfl)
+        .bind(integer_param("snapshots", "damage snapshots kept (k/n of the run)", 3, 0, 20), &S::snapshots);
+    return decl;
+  }();
+  return d;
 }
+
+std::vector<ParamSpec> cutting_params() { return cutting_declaration().specs(); }
 
 std::vector<OutputSpec> cutting_scalars() {
   return {{"F_c", Dim::force_per_width, "mean cutting force from first contact to the end (chip completion)"},
@@ -260,43 +277,10 @@ std::vector<OutputSpec> cutting_scalars() {
 }
 
 CuttingSetup cutting_setup_from(const Values& v) {
-  CuttingSetup s;
-  s.material = gfrp_of(v);
-  s.lamina.X_T = v.at("X_T");
-  s.lamina.X_C = v.at("X_C");
-  s.lamina.Y_T = v.at("Y_T");
-  s.lamina.Y_C = v.at("Y_C");
-  s.lamina.S_L = v.at("S_L");
-  s.lamina.E1 = s.material.E1;
+  CuttingSetup s = cutting_declaration().make(v);
+  s.lamina.E1 = s.material.E1;  // LaRC02's fibre strain and kinking use the elastic constants
   s.lamina.G12 = s.material.G12;
   s.lamina.nu12 = s.material.nu12;
-  s.criterion = static_cast<analytic::Criterion>(whole_number(v, "criterion"));
-  s.theta = v.at("theta");
-  s.depth = v.at(glossary::kDepthOfCut);
-  s.rake = v.at(glossary::kRakeAngle);
-  s.work_length = v.at("work_length");
-  s.work_height = v.at("work_height");
-  s.notch = v.at("notch");
-  s.spacing = v.at("spacing");
-  s.support_factor = v.at("support_factor");
-  s.speed = v.at(glossary::kCuttingSpeed);
-  s.time_scale = v.at("time_scale");
-  s.travel = v.at("travel");
-  s.ramp_transits = v.at("ramp_transits");
-  s.mu = v.at(glossary::kFriction);
-  s.clearance = v.at(glossary::kClearanceAngle);
-  s.residual = v.at("residual");
-  s.edge_radius = v.at("edge_radius");
-  s.degradation = static_cast<Degradation>(whole_number(v, "degradation"));
-  s.erosion = static_cast<Erosion>(whole_number(v, "erosion"));
-  s.visibility = v.at("visibility") > 0.5;
-  s.collapse_ratio = v.at("collapse_ratio");
-  s.drop = v.at("drop");
-  s.drop_window = whole_number(v, "drop_window");
-  s.min_travel = v.at("min_travel");
-  s.completion_guard = static_cast<CompletionGuard>(whole_number(v, "completion_guard"));
-  s.cfl = v.at("cfl");
-  s.snapshots = whole_number(v, "snapshots");
   return s;
 }
 

@@ -217,7 +217,7 @@ SolverSpec block_spec() {
   SolverSpec s;
   s.name = "limit_block";
   s.description = "Verification: block pushed over a frictional rigid base (F = mu q W while mu q < k)";
-  s.source = "figueiredo2024 eqs. 5-9 (permanent contact, Coulomb); issue 6";
+  s.source = "figueiredo2024 eqs. 5-9 (permanent contact, Coulomb)";
   s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("width", Dim::length, "block width W", 1.0),
               p_pos("height", Dim::length, "block height H", 1.0), p_nonneg("q", Dim::stress, "pressure on top", 1.0),
               p_nonneg("mu", Dim::dimensionless, "friction coefficient", 0.3), p_int("nx", "cells along W", 4, 1, 200),

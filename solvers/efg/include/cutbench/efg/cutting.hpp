@@ -43,7 +43,7 @@ struct CuttingSetup {
   double ramp_transits = 50.0;
   double mu = 0.3;               // rake-face friction (paper: function of theta after [63], not given)
   double residual = 0.01;
-  Degradation degradation = Degradation::mode_factors;  // see FailureOptions (README: default since session 3)
+  Degradation degradation = Degradation::mode_factors;  // see FailureOptions
   double collapse_ratio = 0.1;  // collapse erosion (ExplicitOptions::collapse_ratio), 0: off
   double cfl = 0.5;
   Erosion erosion = Erosion::fibre_and_matrix;

@@ -193,6 +193,66 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
 
 }  // namespace
 
+namespace {
+// Tool temperatures at the end: the hottest tool particle and the mean over the tool particles on
+// the rake face (within 1.5 dx of it, above the edge, below 2 t_u; NaN without tool conduction).
+void tool_temperatures(const CuttingSetup& c, const SolidSph& s, const RoundedPolygon& tool, double dx,
+                       CuttingResult& r) {
+  double tsum = 0.0;
+  std::size_t tn = 0;
+  r.tool_T_max = nan_value();
+  if (c.tool_conduction) {
+    r.tool_T_max = 0.0;
+    for (std::size_t k = 0; k < s.tool_particles().size(); ++k) {
+      const Vec2& p = s.tool_particles()[k];
+      const double tk = s.tool_temperature()[k];
+      r.tool_T_max = std::max(r.tool_T_max, tk);
+      const auto sd = tool.at(p);
+      if (sd.distance > -1.5 * dx && sd.normal.x() < -0.7 && p.y() > c.edge_radius && p.y() < 2.0 * c.uncut_thickness) {
+        tsum += tk;
+        ++tn;
+      }
+    }
+  }
+  r.tool_rake_temperature = tn ? tsum / static_cast<double>(tn) : nan_value();
+}
+
+// The tool particles (world frame) with their temperature.
+Snapshot tool_snapshot(const SolidSph& s) {
+  Snapshot snap;
+  snap.time = s.time();
+  for (std::size_t k = 0; k < s.tool_particles().size(); ++k) {
+    snap.x.push_back(s.tool_particles()[k].x() + s.tool_position().x());
+    snap.y.push_back(s.tool_particles()[k].y() + s.tool_position().y());
+  }
+  snap.add("T", "K", s.tool_temperature());
+  return snap;
+}
+
+// Heat audit: plastic heat generated in, and heat content at the end of, the particles that started
+// in the uncut layer (above y_low) and below it; stored, lost and sunk heat; the imbalance
+// (generated - stored - lost - sunk) / generated.
+void heat_audit(const std::vector<Vec2>& x, const std::vector<char>& fixed, const SolidSph& s, double y_low,
+                double rho_c, double T_ambient, CuttingResult& r) {
+  r.plastic_heat = s.plastic_heat();
+  const auto& q = s.plastic_heat_by_particle();
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const bool layer = x[i].y() > y_low;
+    if (i < q.size()) (layer ? r.plastic_heat_layer : r.plastic_heat_below) += q[i];
+    if (!fixed[i]) (layer ? r.stored_layer : r.stored_below) += particle_heat(s, i, rho_c, T_ambient);
+  }
+  r.stored_workpiece = s.workpiece_heat_content();
+  r.stored_tool = s.tool_heat_content();
+  r.heat_lost = s.boundary_heat_loss();
+  r.heat_sunk = s.heat_sunk();
+  const double generated = r.plastic_heat + r.friction_heat;
+  r.heat_imbalance =
+      generated > 0.0 ? (generated - r.stored_workpiece - r.stored_tool - r.heat_lost - r.heat_sunk) / generated
+                      : 0.0;
+}
+
+}  // namespace
+
 CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   if (c.particles_over_height < 4) throw InputError("particles_over_height", "needs at least 4");
   if (!(c.uncut_thickness > 0.0 && c.uncut_thickness < c.height)) throw InputError(glossary::kDepthOfCut, "must be in (0, height)");
@@ -367,55 +427,17 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   }
   r.rake_temperature = rake_face_temperature();
   r.rake_temperature_avg = rake_avg_n ? rake_avg_sum / rake_avg_n : nan_value();
-  double tsum = 0.0;
-  std::size_t tn = 0;
-  r.tool_T_max = nan_value();
-  if (c.tool_conduction) {
-    r.tool_T_max = 0.0;
-    for (std::size_t k = 0; k < s.tool_particles().size(); ++k) {
-      const Vec2& p = s.tool_particles()[k];
-      const double tk = s.tool_temperature()[k];
-      r.tool_T_max = std::max(r.tool_T_max, tk);
-      const auto sd = tool->at(p);
-      if (sd.distance > -1.5 * dx && sd.normal.x() < -0.7 && p.y() > c.edge_radius && p.y() < 2.0 * c.uncut_thickness) {
-        tsum += tk;
-        ++tn;
-      }
-    }
-  }
-  r.tool_rake_temperature = tn ? tsum / static_cast<double>(tn) : nan_value();
+  tool_temperatures(c, s, *tool, dx, r);
   r.chip_height = chip_top - c.height;
   r.snapshot = take_snapshot();
   r.snapshots.push_back(r.snapshot);
-  r.tool_snapshot.time = s.time();
-  for (std::size_t k = 0; k < s.tool_particles().size(); ++k) {
-    r.tool_snapshot.x.push_back(s.tool_particles()[k].x() + s.tool_position().x());
-    r.tool_snapshot.y.push_back(s.tool_particles()[k].y() + s.tool_position().y());
-  }
-  r.tool_snapshot.add("T", "K", s.tool_temperature());
+  r.tool_snapshot = tool_snapshot(s);
   r.friction_heat = s.friction_heat();
   r.friction_heat_tool = s.friction_heat_to_tool();
   r.tool_share = s.tool_heat_share();
   const double rho_c = in.thermal.heat.density * in.thermal.heat.specific_heat;
   chip_metrics(c, x, s, rho_c, in.thermal.boundary.T_ambient, r);
-  r.plastic_heat = s.plastic_heat();
-  {
-    const auto& q = s.plastic_heat_by_particle();
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      const bool layer = x[i].y() > y_low;
-      if (i < q.size()) (layer ? r.plastic_heat_layer : r.plastic_heat_below) += q[i];
-      if (!fixed[i])
-        (layer ? r.stored_layer : r.stored_below) += particle_heat(s, i, rho_c, in.thermal.boundary.T_ambient);
-    }
-  }
-  r.stored_workpiece = s.workpiece_heat_content();
-  r.stored_tool = s.tool_heat_content();
-  r.heat_lost = s.boundary_heat_loss();
-  r.heat_sunk = s.heat_sunk();
-  const double generated = r.plastic_heat + r.friction_heat;
-  r.heat_imbalance =
-      generated > 0.0 ? (generated - r.stored_workpiece - r.stored_tool - r.heat_lost - r.heat_sunk) / generated
-                      : 0.0;
+  heat_audit(x, fixed, s, y_low, rho_c, in.thermal.boundary.T_ambient, r);
   return r;
 }
 

@@ -111,6 +111,37 @@ CuttingSnapshot read_cutting_snapshot(BinaryReader& r) {
 }
 }  // namespace
 
+namespace {
+// Damage at the end of the run: failed Gauss points by mode, eroded ones, and the damaged shares of
+// the chip (above the cut line, ahead of the notch, behind the fibre line through the edge) and of
+// the layer one depth of cut below the cut line.
+void damage_census(const CuttingSetup& s, const Discretisation& d, const ExplicitEFG& solver, double x0, double yE,
+                   double tr_end, CuttingResult& r) {
+  const double cot = std::abs(std::tan(s.theta)) > 1e-12 ? 1.0 / std::tan(s.theta) : 1e12;
+  for (std::size_t g = 0; g < solver.num_gauss(); ++g) {
+    const auto dm = solver.damage(g);
+    r.fibre_damaged += dm[0] > 0.5;
+    r.matrix_damaged += dm[1] > 0.5;
+    r.interface_damaged += dm[2] > 0.5;
+    r.eroded += solver.eroded(g);
+    const Vec2& X = d.gauss[g].x;  // reference position (total Lagrangian)
+    if (X.y() > yE && X.x() >= x0 && (cot <= 0.0 || X.x() - (x0 + tr_end) <= (X.y() - yE) * cot)) {
+      ++r.chip_gauss;
+      r.chip_fibre += dm[0] > 0.5;
+      r.chip_matrix += dm[1] > 0.5;
+    }
+    if (X.y() < yE && X.y() > yE - s.depth && X.x() >= x0 && X.x() <= x0 + tr_end + s.depth) {
+      ++r.sub_gauss;
+      r.sub_fibre += dm[0] > 0.5;
+      r.sub_matrix += dm[1] > 0.5;
+    }
+  }
+  r.released = solver.released_count();
+  r.collapse_eroded = solver.collapse_eroded_count();
+  r.opaque_segments = solver.opaque_segments().size();
+}
+}  // namespace
+
 CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double)>& progress) {
   if (!(s.depth > 0.0)) throw InputError(glossary::kDepthOfCut, "must be > 0");
   if (s.depth >= s.work_height) throw InputError(glossary::kDepthOfCut, "must be smaller than the workpiece height");
@@ -361,29 +392,7 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
       r.snapshots.push_back(cand[best]);
     }
   }
-  const double tr_end = travel_at(solver.time());
-  const double cot = std::abs(std::tan(s.theta)) > 1e-12 ? 1.0 / std::tan(s.theta) : 1e12;
-  for (std::size_t g = 0; g < solver.num_gauss(); ++g) {
-    const auto dm = solver.damage(g);
-    r.fibre_damaged += dm[0] > 0.5;
-    r.matrix_damaged += dm[1] > 0.5;
-    r.interface_damaged += dm[2] > 0.5;
-    r.eroded += solver.eroded(g);
-    const Vec2& X = d.gauss[g].x;  // reference position (total Lagrangian)
-    if (X.y() > yE && X.x() >= x0 && (cot <= 0.0 || X.x() - (x0 + tr_end) <= (X.y() - yE) * cot)) {
-      ++r.chip_gauss;
-      r.chip_fibre += dm[0] > 0.5;
-      r.chip_matrix += dm[1] > 0.5;
-    }
-    if (X.y() < yE && X.y() > yE - s.depth && X.x() >= x0 && X.x() <= x0 + tr_end + s.depth) {
-      ++r.sub_gauss;
-      r.sub_fibre += dm[0] > 0.5;
-      r.sub_matrix += dm[1] > 0.5;
-    }
-  }
-  r.released = solver.released_count();
-  r.collapse_eroded = solver.collapse_eroded_count();
-  r.opaque_segments = solver.opaque_segments().size();
+  damage_census(s, d, solver, x0, yE, travel_at(solver.time()), r);
   return r;
 }
 

@@ -69,10 +69,14 @@ BOOST_AUTO_TEST_CASE(partition_of_unity_and_linear_reproduction) {
     }
     BOOST_TEST_MESSAGE(c.name << ": |sum phi - 1| " << e0 << ", linear " << e1 << ", sum dphi " << e2
                               << ", grad of x " << eg);
+    // Exact in exact arithmetic; what remains is round-off, amplified for the derivatives by the
+    // conditioning of the regularised weight's moment matrix: measured sum dphi 3e-11 with GCC 12
+    // -O3 and 1.7e-10 with Clang 14 (the ThreadSanitizer build), hence 1e-9 for the derivatives,
+    // six orders below any discretisation error of the EFG solutions.
     BOOST_TEST(e0 < 1e-10, c.name);
     BOOST_TEST(e1 < 1e-10, c.name);
-    BOOST_TEST(e2 < 1e-10, c.name);
-    BOOST_TEST(eg < 1e-10, c.name);
+    BOOST_TEST(e2 < 1e-9, c.name);
+    BOOST_TEST(eg < 1e-9, c.name);
   }
 }
 

@@ -257,6 +257,39 @@ BOOST_AUTO_TEST_CASE(turned_free_chip_mass_balance) {
 // The loop's control flow with a stub solve (no mechanics): eta2 = phi - phi0, so phi* = phi0 to
 // within tol_phi below it; no sign change above phi_min gives the smallest angle tried, not
 // converged; a phi_min above phi_M - step keeps the phi_M solve as the result.
+// The turning-point loop's control flow with stubs: phi* below phi_M is taken and kept once it
+// repeats; phi* above phi_M keeps phi_M after one solve; a phi* that keeps moving stops after the
+// fourth update; restart runs before every new phi.
+BOOST_AUTO_TEST_CASE(turning_point_loop_updates_and_stops) {
+  const double deg = 3.14159265358979323846 / 180.0;
+  CuttingSetup c;
+  c.alpha = 0.0;
+  c.mu = 0.5;
+  const double phi_m = merchant_shear_angle(c.alpha, c.mu);
+  c.phi = phi_m;
+  auto solve = [](CuttingSetup& cs) {
+    CuttingResult r;
+    r.fc_bar = 1.0 + cs.phi;
+    return r;
+  };
+  int restarts = 0;
+  auto restart = [&](CuttingSetup&) { ++restarts; };
+  auto res = turning_point_loop(c, solve, [&](const CuttingSetup&, const CuttingResult&) { return 26.0 * deg; }, restart);
+  BOOST_TEST(res.phi.size() == 2u);
+  BOOST_TEST(res.phi.front() == phi_m);
+  BOOST_TEST(c.phi == 26.0 * deg);
+  BOOST_TEST(res.final.fc_bar == 1.0 + 26.0 * deg);
+  BOOST_TEST(restarts == 1);
+  c.phi = phi_m;
+  res = turning_point_loop(c, solve, [&](const CuttingSetup&, const CuttingResult&) { return 40.0 * deg; }, restart);
+  BOOST_TEST(res.phi.size() == 1u);
+  BOOST_TEST(c.phi == phi_m);
+  c.phi = phi_m;
+  double next = 28.0 * deg;  // moves by 1 deg at every solve
+  res = turning_point_loop(c, solve, [&](const CuttingSetup&, const CuttingResult&) { return next -= 1.0 * deg; }, restart);
+  BOOST_TEST(res.phi.size() == 5u);  // the first solve and four updates
+}
+
 BOOST_AUTO_TEST_CASE(tangent_loop_bracket_bisection_and_no_bracket) {
   const double deg = 3.14159265358979323846 / 180.0;
   CuttingSetup c;

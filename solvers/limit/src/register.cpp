@@ -349,23 +349,6 @@ struct SteadyState {
   std::vector<std::string> notes;
 };
 
-// Fig. 4, phi <- min(phi*, phi_M) with phi* the free-surface turning point: at most 4 updates,
-// |d phi| < 0.5 deg.
-void turning_point_loop(CuttingSetup& c, CuttingSolves& solves, bool search, double t1, SteadyState& st) {
-  const double phi_m = merchant_shear_angle(c.alpha, c.mu);
-  for (int it = 0; it < 5; ++it) {
-    st.r = solves.once(c);
-    const double ps = measured_shear_angle(c, st.r);
-    st.phi.push_back(c.phi);
-    st.phi_star.push_back(ps);
-    st.fc.push_back(st.r.fc_bar);
-    const double next = std::min(ps, phi_m);
-    if (std::abs(next - c.phi) < 0.5 * kPi / 180.0 || it == 4) break;
-    c.phi = next;
-    if (search) c.contact_length = t1 / std::cos(c.alpha) / t1;
-  }
-}
-
 // The run's outer loop: the steady-state loop of Fig. 4 (tangent exit or turning point), the
 // eta2 fit, or one solve; c ends as the geometry of the returned solution.
 SteadyState solve_steady_state(CuttingSetup& c, const CuttingModes& m, CuttingSolves& solves, double t1) {
@@ -391,8 +374,17 @@ SteadyState solve_steady_state(CuttingSetup& c, const CuttingModes& m, CuttingSo
     for (std::size_t i = 0; i < st.phi.size(); ++i)
       if (st.phi[i] == res.phi_star) c.contact_length = st.l[i];
     st.r = std::move(res.final);
-  } else if (m.loop()) {
-    turning_point_loop(c, solves, m.search(), t1, st);
+  } else if (m.loop()) {  // Fig. 4: phi <- min(phi*, phi_M), at most 4 updates, |d phi| < 0.5 deg
+    auto res = turning_point_loop(
+        c, [&](CuttingSetup& cs) { return solves.once(cs); },
+        [](const CuttingSetup& cs, const CuttingResult& rr) { return measured_shear_angle(cs, rr); },
+        [&](CuttingSetup& cs) {
+          if (m.search()) cs.contact_length = t1 / std::cos(cs.alpha) / t1;
+        });
+    st.phi = std::move(res.phi);
+    st.phi_star = std::move(res.phi_star);
+    st.fc = std::move(res.fc_bar);
+    st.r = std::move(res.final);
   } else if (m.fit_eta) {
     auto fit = fit_eta2(c, [&](CuttingSetup cs) { return solves.once(cs); });
     st.eta = fit.eta2;

@@ -168,6 +168,34 @@ struct TangentLoopResult {
 template <class SolveFn>
 TangentLoopResult tangent_loop(CuttingSetup c, SolveFn&& solve, const TangentLoopOptions& opt = {});
 
+// Steady-state loop of Fig. 4 with the free-surface turning point: phi <- min(phi*, phi_M), phi*
+// measured on each solution, until |d phi| < tol or after max_updates updates. `solve(c)` solves
+// the geometry c (it may set c's contact length: a contact search); `measure(c, r)` gives phi*;
+// `restart(c)` prepares c for the next phi (e.g. the contact length back to its start value).
+// c ends as the geometry of the returned solution.
+struct TurningPointResult {
+  std::vector<double> phi, phi_star, fc_bar;  // every solve
+  CuttingResult final;
+};
+template <class SolveFn, class MeasureFn, class RestartFn>
+TurningPointResult turning_point_loop(CuttingSetup& c, SolveFn&& solve, MeasureFn&& measure, RestartFn&& restart,
+                                      int max_updates = 4, double tol = 0.5 * 3.14159265358979323846 / 180.0) {
+  TurningPointResult res;
+  const double phi_m = merchant_shear_angle(c.alpha, c.mu);
+  for (int it = 0; it <= max_updates; ++it) {
+    res.final = solve(c);
+    const double ps = measure(c, res.final);
+    res.phi.push_back(c.phi);
+    res.phi_star.push_back(ps);
+    res.fc_bar.push_back(res.final.fc_bar);
+    const double next = std::min(ps, phi_m);
+    if (std::abs(next - c.phi) < tol || it == max_updates) break;
+    c.phi = next;
+    restart(c);
+  }
+  return res;
+}
+
 double end_normal_stress(const CuttingResult& r, double contact_length, double fraction = 0.1);
 
 // Unrestricted tool (paper sec. 2.1): starting from l = t1/cos α, increase l in steps until the

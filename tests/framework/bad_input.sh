@@ -85,42 +85,11 @@ if "$cutbench" describe mpm_cutting >/dev/null 2>&1; then
   expect "option given a number (limit)" "steady_state"   run "$(typed_case figueiredo2024 lim limit limit_cutting '{ steady_state = 2 }')"
   expect "option given a number (EFG)" "criterion"        run "$(typed_case kahwash2018 efg efg efg_cutting '{ criterion = 2 }')"
   # selectors name only declared outputs and tables (see `cutbench describe SOLVER`)
-  expect "check of an undeclared output" "value.output" run "$(typed_case nairn2015 out mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[checks]]
-key = "k"
-kind = "verification"
-metric = "relative"
-units = "N/m"
-source = "test"
-reference = 1.0
-tolerance = 0.1
-value = { series = "s", output = "F_cut" }')")"
-  expect "check of an undeclared table" "value.table" run "$(typed_case nairn2015 tab mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[checks]]
-key = "k"
-kind = "verification"
-metric = "relative"
-units = "N/m"
-source = "test"
-reference = 1.0
-tolerance = 0.1
-value = { series = "s", run = 0, table = "force", output = "F_c", row = -1 }')")"
-  expect "check of an undeclared column" "value.x" run "$(typed_case nairn2015 col mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[checks]]
-key = "k"
-kind = "verification"
-metric = "relative"
-units = "N/m"
-source = "test"
-reference = 1.0
-tolerance = 0.1
-value = { series = "s", run = 0, table = "forces", output = "F_c", x = "time", at = 0.001 }')")"
-  expect "check of a series not in the case" "value.series" run "$(typed_case nairn2015 ser mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[checks]]
-key = "k"
-kind = "verification"
-metric = "relative"
-units = "N/m"
-source = "test"
-reference = 1.0
-tolerance = 0.1
-value = { series = "mpm", output = "F_c" }')")"
+  check_with() { printf '[[checks]]\nkey = "k"\nkind = "verification"\nmetric = "relative"\nunits = "N/m"\nsource = "test"\nreference = 1.0\ntolerance = 0.1\n%s\n' "$1"; }
+  expect "check of an undeclared output" "value.output" run "$(typed_case nairn2015 out mpm mpm_cutting '{ t1 = "1 mm" }' "$(check_with 'value = { series = "s", output = "F_cut" }')")"
+  expect "check of an undeclared table" "value.table" run "$(typed_case nairn2015 tab mpm mpm_cutting '{ t1 = "1 mm" }' "$(check_with 'value = { series = "s", run = 0, table = "force", output = "F_c", row = -1 }')")"
+  expect "check of an undeclared column" "value.x" run "$(typed_case nairn2015 col mpm mpm_cutting '{ t1 = "1 mm" }' "$(check_with 'value = { series = "s", run = 0, table = "forces", output = "F_c", x = "time", at = 0.001 }')")"
+  expect "check of a series not in the case" "value.series" run "$(typed_case nairn2015 ser mpm mpm_cutting '{ t1 = "1 mm" }' "$(check_with 'value = { series = "mpm", output = "F_c" }')")"
   expect "plot line of an undeclared column" "lines[0].y" run "$(typed_case nairn2015 plt mpm mpm_cutting '{ t1 = "1 mm" }' "$(printf '%s' '[[plots]]
 name = "p"
 [[plots.lines]]

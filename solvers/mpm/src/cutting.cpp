@@ -529,7 +529,9 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   put("steps", static_cast<double>(pb.steps()), "1");
   put("dt", pb.dt(), "s");
   put("wall_time", wall, "s");
-  put("particle_steps_per_s", static_cast<double>(pb.size()) * static_cast<double>(pb.steps()) / wall, "1/s");
+  put("particle_steps_per_s",
+      static_cast<double>(pb.size()) * static_cast<double>(pb.steps() - static_cast<long>(drive_report.resumed_from_step)) / wall,
+      "1/s");
   put("threads", pb.threads(), "1");
   put("frozen_particles", static_cast<double>(pb.frozen()), "1");
   add_chip_metrics(out, pb, s);
@@ -576,7 +578,7 @@ SolverSpec cutting_solver_spec() {
       {"steps", Dim::dimensionless, "time steps"},
       {"dt", Dim::time, "time step"},
       {"wall_time", Dim::time, "wall-clock time of the time loop"},
-      {"particle_steps_per_s", Dim::strain_rate, "throughput, particle-steps per second"},
+      {"particle_steps_per_s", Dim::strain_rate, "throughput, particle-steps per second (after a resume: the steps since the resume)"},
       {"threads", Dim::dimensionless, "OpenMP threads used"},
       {"frozen_particles", Dim::dimensionless, "particles that left the grid"},
       {"chip_domain_gap_fraction", Dim::dimensionless, "Fig 2 metric: enclosed uncovered area / covered area"},

@@ -112,6 +112,40 @@ CuttingSnapshot read_cutting_snapshot(BinaryReader& r) {
 }  // namespace
 
 namespace {
+// The explicit solver's options of a cutting run: kinematics, time step, failure and erosion.
+ExplicitOptions explicit_options(const CuttingSetup& s) {
+  ExplicitOptions opt;
+  opt.kinematics = s.kinematics;
+  opt.update_interval = s.update_interval;
+  opt.cfl = s.cfl;
+  opt.failure.enabled = true;
+  opt.failure.criterion = s.criterion;
+  opt.failure.lamina = s.lamina;
+  opt.failure.residual = s.residual;
+  opt.failure.degradation = s.degradation;
+  opt.erosion = s.erosion;
+  opt.collapse_ratio = s.collapse_ratio;
+  return opt;
+}
+
+// The tool: cutting edge at E, rake face at `rake` from the vertical, clearance face rising
+// backwards at `clearance`, 4 workpiece heights tall and long; moves along +x at V after a ramp of
+// `ramp_transits` wave transits of the workpiece height Ly.
+RigidTool cutting_tool(const CuttingSetup& s, const Vec2& E, double V, double Ly) {
+  const double T = 4.0 * s.work_height, W = 4.0 * s.work_height;
+  RigidTool tool;
+  tool.vertices = edge_vertices(E, s.rake, s.clearance, s.edge_radius, s.edge_segments);
+  tool.vertices.push_back(E + Vec2(-T * std::tan(s.rake), T));
+  tool.vertices.push_back(E + Vec2(-W, T));
+  tool.vertices.push_back(E + Vec2(-W, W * std::tan(s.clearance)));
+  tool.velocity = Vec2(V, 0.0);
+  tool.mu = s.mu;
+  tool.ramp_time = s.ramp_transits * Ly / s.material.wave_speed();
+  return tool;
+}
+}  // namespace
+
+namespace {
 // Damage at the end of the run: failed Gauss points by mode, eroded ones, and the damaged shares of
 // the chip (above the cut line, ahead of the notch, behind the fibre line through the edge) and of
 // the layer one depth of cut below the cut line.
@@ -159,21 +193,10 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   const double yE = Ly - s.depth;
   const double x0 = std::max(1.0, std::round(s.notch / hx)) * hx;
   const Discretisation d = notched_rectangle(Lx, Ly, nx, ny, s.support_factor, x0, yE);
-  ExplicitOptions opt;
-  opt.kinematics = s.kinematics;
-  opt.update_interval = s.update_interval;
-  opt.cfl = s.cfl;
-  opt.failure.enabled = true;
-  opt.failure.criterion = s.criterion;
-  opt.failure.lamina = s.lamina;
-  opt.failure.residual = s.residual;
-  opt.failure.degradation = s.degradation;
-  opt.erosion = s.erosion;
-  opt.collapse_ratio = s.collapse_ratio;
   // Fibres along (cos theta, sin theta) with the tool moving +x: for 0 < theta < 90 deg they rise
   // ahead of the tool from the edge to the free surface, the path along which the paper's chips
   // separate (sections 5.2 and 6).
-  ExplicitEFG solver(d, s.material, s.theta, opt);
+  ExplicitEFG solver(d, s.material, s.theta, explicit_options(s));
   const double tol = 1e-9 * Lx;
   std::vector<int> surface_row;  // nodes of the row just below the cut line, by x
   for (std::size_t I = 0; I < d.nodes.size(); ++I) {
@@ -197,16 +220,8 @@ CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double
   // rising backwards at `clearance`; moves along +x. Starts a quarter spacing from the chip.
   const double V = s.speed * s.time_scale;
   const double gap = 0.25 * hx;
-  const double T = 4.0 * s.work_height, W = 4.0 * s.work_height;
   const Vec2 E(x0 - gap, yE);
-  RigidTool tool;
-  tool.vertices = edge_vertices(E, s.rake, s.clearance, s.edge_radius, s.edge_segments);
-  tool.vertices.push_back(E + Vec2(-T * std::tan(s.rake), T));
-  tool.vertices.push_back(E + Vec2(-W, T));
-  tool.vertices.push_back(E + Vec2(-W, W * std::tan(s.clearance)));
-  tool.velocity = Vec2(V, 0.0);
-  tool.mu = s.mu;
-  tool.ramp_time = s.ramp_transits * Ly / s.material.wave_speed();
+  const RigidTool tool = cutting_tool(s, E, V, Ly);
   solver.set_tool(tool);
 
   CuttingResult r;

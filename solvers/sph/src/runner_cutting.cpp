@@ -194,6 +194,40 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
 }  // namespace
 
 namespace {
+// The workpiece particles with temperature, plastic strain and the surface flag.
+Snapshot workpiece_snapshot(const SolidSph& s, std::size_t n) {
+  Snapshot snap;
+  snap.time = s.time();
+  for (std::size_t i = 0; i < n; ++i) {
+    snap.x.push_back(s.positions()[i].x());
+    snap.y.push_back(s.positions()[i].y());
+  }
+  snap.add("T", "K", s.temperature());
+  snap.add("eps_p", "1", s.plastic_strain());
+  std::vector<double> surf(n, 0.0);
+  for (std::size_t i = 0; i < n && i < s.surface().surface.size(); ++i) surf[i] = s.surface().surface[i];
+  snap.add("surface", "1", surf);
+  return snap;
+}
+
+// Rake-face temperature: the mean over the free particles within 1.5 dx of the tool whose contact
+// normal points against the cut (the rake face), above the edge; NaN when there are none.
+double rake_face_mean_temperature(const SolidSph& s, const std::vector<char>& fixed, const RoundedPolygon& tool,
+                                  double dx, double edge_radius) {
+  double tsum = 0.0;
+  std::size_t tn = 0;
+  for (std::size_t i = 0; i < fixed.size(); ++i) {
+    if (fixed[i]) continue;
+    const Vec2& p = s.positions()[i];
+    const auto sd = tool.at(p - s.tool_position());
+    if (sd.distance < 1.5 * dx && sd.normal.x() < -0.7 && p.y() > s.tool_position().y() + edge_radius) {
+      tsum += s.temperature()[i];
+      ++tn;
+    }
+  }
+  return tn ? tsum / static_cast<double>(tn) : nan_value();
+}
+
 // Tool temperatures at the end: the hottest tool particle and the mean over the tool particles on
 // the rake face (within 1.5 dx of it, above the edge, below 2 t_u; NaN without tool conduction).
 void tool_temperatures(const CuttingSetup& c, const SolidSph& s, const RoundedPolygon& tool, double dx,
@@ -283,20 +317,7 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   double acc_fc = 0.0, acc_ft = 0.0, acc_t = 0.0, t_next = window;
   double steady_fc = 0.0, steady_ft = 0.0, steady_t = 0.0;
   const double t_steady = c.steady_from * t_end;
-  auto take_snapshot = [&]() {
-    Snapshot snap;
-    snap.time = s.time();
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      snap.x.push_back(s.positions()[i].x());
-      snap.y.push_back(s.positions()[i].y());
-    }
-    snap.add("T", "K", s.temperature());
-    snap.add("eps_p", "1", s.plastic_strain());
-    std::vector<double> surf(x.size(), 0.0);
-    for (std::size_t i = 0; i < x.size() && i < s.surface().surface.size(); ++i) surf[i] = s.surface().surface[i];
-    snap.add("surface", "1", surf);
-    return snap;
-  };
+  auto take_snapshot = [&]() { return workpiece_snapshot(s, x.size()); };
   // contact normals of the rake and clearance faces (out of the tool, see cutting_tool)
   const Vec2 n_rake(-std::cos(c.rake), std::sin(c.rake)), n_flank(std::sin(c.clearance), -std::cos(c.clearance));
   Vec2 zone_force[3] = {Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};  // rake, edge, flank (x dt)
@@ -304,20 +325,7 @@ CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
   // Rake-face temperature: free particles within 1.5 dx of the tool whose contact normal points
   // against the cut (the rake face), above the edge (mean; NaN when none).
   const auto tool = cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height);
-  auto rake_face_temperature = [&]() {
-    double tsum = 0.0;
-    std::size_t tn = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      if (fixed[i]) continue;
-      const Vec2& p = s.positions()[i];
-      const auto sd = tool->at(p - s.tool_position());
-      if (sd.distance < 1.5 * dx && sd.normal.x() < -0.7 && p.y() > s.tool_position().y() + c.edge_radius) {
-        tsum += s.temperature()[i];
-        ++tn;
-      }
-    }
-    return tn ? tsum / static_cast<double>(tn) : nan_value();
-  };
+  auto rake_face_temperature = [&]() { return rake_face_mean_temperature(s, fixed, *tool, dx, c.edge_radius); };
   double rake_avg_sum = 0.0;
   int rake_avg_n = 0;
   const int n_snap = std::max(1, c.snapshots);

@@ -4,6 +4,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <optional>
 #include <cmath>
 
 #include "cutbench/common/checkpoint.hpp"
@@ -176,239 +177,296 @@ void damage_census(const CuttingSetup& s, const Discretisation& d, const Explici
 }
 }  // namespace
 
-CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double)>& progress) {
+namespace {
+// The node lattice of a cutting run: columns at hx = spacing; rows at hy = depth/(nd + 1/2) so that
+// the cut line y_E = H - depth lies half-way between two rows (no node on the cut line); the notch
+// (already cut) ends at x0.
+struct Lattice {
+  double hx = 0.0, hy = 0.0, Lx = 0.0, Ly = 0.0, yE = 0.0, x0 = 0.0;
+  int nx = 0, ny = 0;
+};
+
+Lattice cutting_lattice(const CuttingSetup& s) {
   if (!(s.depth > 0.0)) throw InputError(glossary::kDepthOfCut, "must be > 0");
   if (s.depth >= s.work_height) throw InputError(glossary::kDepthOfCut, "must be smaller than the workpiece height");
   if (!(s.spacing > 0.0) || s.spacing > 0.5 * s.depth) throw InputError("spacing", "must be in (0, depth/2]");
   if (!(s.notch > 0.0) || s.notch >= s.work_length) throw InputError("notch", "must be in (0, work_length)");
   if (s.drop < 0.0 || s.drop >= 1.0) throw InputError("drop", "must be in [0, 1)");
-  // Lattice: columns at hx = spacing; rows at hy = depth/(nd + 1/2) so that the cut line
-  // y_E = H - depth lies half-way between two rows (no node on the cut line).
-  const double hx = s.spacing;
+  Lattice l;
+  l.hx = s.spacing;
   const int nd = std::max(2, static_cast<int>(std::lround(s.depth / s.spacing)));
-  const double hy = s.depth / (nd + 0.5);
-  const int nx = static_cast<int>(std::lround(s.work_length / hx)) + 1;
-  const int ny = std::max(nd + 3, static_cast<int>(std::lround(s.work_height / hy)) + 1);
-  const double Lx = (nx - 1) * hx, Ly = (ny - 1) * hy;
-  const double yE = Ly - s.depth;
-  const double x0 = std::max(1.0, std::round(s.notch / hx)) * hx;
-  const Discretisation d = notched_rectangle(Lx, Ly, nx, ny, s.support_factor, x0, yE);
-  // Fibres along (cos theta, sin theta) with the tool moving +x: for 0 < theta < 90 deg they rise
-  // ahead of the tool from the edge to the free surface, the path along which the paper's chips
-  // separate (sections 5.2 and 6).
-  ExplicitEFG solver(d, s.material, s.theta, explicit_options(s));
-  const double tol = 1e-9 * Lx;
-  std::vector<int> surface_row;  // nodes of the row just below the cut line, by x
-  for (std::size_t I = 0; I < d.nodes.size(); ++I) {
-    const Vec2& X = d.nodes[I];
-    if (X.y() < tol || X.x() > Lx - tol) {  // held on the bottom and the far end
-      solver.add_velocity_bc(static_cast<int>(I), 0, [](double) { return 0.0; });
-      solver.add_velocity_bc(static_cast<int>(I), 1, [](double) { return 0.0; });
-    }
-    if (std::abs(X.y() - (yE - 0.5 * hy)) < 1e-6 * hy) surface_row.push_back(static_cast<int>(I));
-  }
-  std::sort(surface_row.begin(), surface_row.end(),
-            [&](int a, int b) { return d.nodes[a].x() < d.nodes[b].x(); });
-  // Visibility: the re-entrant corner of the notch (its floor and its face, a quarter spacing
-  // inside the void) hides nodes across the void from the chip root.
-  const double xf = x0 - 0.25 * hx;
-  if (s.visibility) {
-    solver.add_opaque_segment({Vec2(-hx, yE), Vec2(xf, yE)});
-    solver.add_opaque_segment({Vec2(xf, yE), Vec2(xf, Ly + hx)});
-  }
-  // Tool: cutting edge at (x_E, y_E), rake face at `rake` from the vertical, clearance face
-  // rising backwards at `clearance`; moves along +x. Starts a quarter spacing from the chip.
-  const double V = s.speed * s.time_scale;
-  const double gap = 0.25 * hx;
-  const Vec2 E(x0 - gap, yE);
-  const RigidTool tool = cutting_tool(s, E, V, Ly);
-  solver.set_tool(tool);
+  l.hy = s.depth / (nd + 0.5);
+  l.nx = static_cast<int>(std::lround(s.work_length / l.hx)) + 1;
+  l.ny = std::max(nd + 3, static_cast<int>(std::lround(s.work_height / l.hy)) + 1);
+  l.Lx = (l.nx - 1) * l.hx;
+  l.Ly = (l.ny - 1) * l.hy;
+  l.yE = l.Ly - s.depth;
+  l.x0 = std::max(1.0, std::round(s.notch / l.hx)) * l.hx;
+  return l;
+}
 
-  CuttingResult r;
-  r.nodes = static_cast<int>(d.nodes.size());
-  r.gauss = solver.num_gauss();
-  r.hx = hx;
-  r.hy = hy;
-  r.y_edge = yE;
-  // Contact when the tool has moved by the gap (during or after the ramp).
-  r.t_contact_expected = gap < 0.5 * V * tool.ramp_time ? std::sqrt(2.0 * gap * tool.ramp_time / V)
-                                                         : gap / V + 0.5 * tool.ramp_time;
-  r.dt_initial = solver.critical_time_step() * s.cfl;
-  r.dt_min = r.dt_initial;
-  auto travel_at = [&](double t) { return std::max(0.0, tool.displacement(t).x() - gap); };
-  const double t_end = (s.travel + gap) / V + 0.5 * tool.ramp_time;
-  Vec2 acc = Vec2::Zero(), acc_all = Vec2::Zero();
-  double tacc = 0.0, tacc_all = 0.0;
-  int nacc = 0;
-  double cut_tip = xf;  // reference x of the cut line's end
-  std::vector<CuttingSnapshot> cand;
-  double next_snap = 0.0;
-  auto take_snapshot = [&]() {
+// One cutting run as the shared driver sees it: the explicit EFG solver with the tool, the
+// visibility cut line, the force windows, chip completion (time-step drop with its guard), the
+// edge-to-surface damage paths and the snapshot candidates; the whole state saved for checkpoints.
+class CuttingRun final : public SteppedRun {
+public:
+  CuttingRun(const CuttingSetup& s, const std::function<void(double)>& progress)
+      : s_(s), progress_(progress), l_(cutting_lattice(s)),
+        d_(notched_rectangle(l_.Lx, l_.Ly, l_.nx, l_.ny, s.support_factor, l_.x0, l_.yE)),
+        // Fibres along (cos theta, sin theta) with the tool moving +x: for 0 < theta < 90 deg they
+        // rise ahead of the tool from the edge to the free surface, the path along which the
+        // paper's chips separate (sections 5.2 and 6).
+        solver_(d_, s.material, s.theta, explicit_options(s)),
+        xf_(l_.x0 - 0.25 * l_.hx), V_(s.speed * s.time_scale), gap_(0.25 * l_.hx), E_(l_.x0 - gap_, l_.yE),
+        tool_(cutting_tool(s, E_, V_, l_.Ly)), paths_(reference_gauss(d_), l_.hx, l_.hy, l_.yE, l_.Ly),
+        cut_tip_(xf_) {
+    hold_and_find_surface_row();
+    // Visibility: the re-entrant corner of the notch (its floor and its face, a quarter spacing
+    // inside the void) hides nodes across the void from the chip root.
+    if (s.visibility) {
+      solver_.add_opaque_segment({Vec2(-l_.hx, l_.yE), Vec2(xf_, l_.yE)});
+      solver_.add_opaque_segment({Vec2(xf_, l_.yE), Vec2(xf_, l_.Ly + l_.hx)});
+    }
+    // Tool: starts a quarter spacing from the chip.
+    solver_.set_tool(tool_);
+    r_.nodes = static_cast<int>(d_.nodes.size());
+    r_.gauss = solver_.num_gauss();
+    r_.hx = l_.hx;
+    r_.hy = l_.hy;
+    r_.y_edge = l_.yE;
+    // Contact when the tool has moved by the gap (during or after the ramp).
+    r_.t_contact_expected = gap_ < 0.5 * V_ * tool_.ramp_time ? std::sqrt(2.0 * gap_ * tool_.ramp_time / V_)
+                                                                : gap_ / V_ + 0.5 * tool_.ramp_time;
+    r_.dt_initial = solver_.critical_time_step() * s.cfl;
+    r_.dt_min = r_.dt_initial;
+    t_end_ = (s.travel + gap_) / V_ + 0.5 * tool_.ramp_time;
+    detector_.emplace(s.drop, s.drop_window, r_.dt_initial);
+  }
+
+  bool done() const override { return stopped_ || !(solver_.time() < t_end_); }
+  std::size_t steps() const override { return static_cast<std::size_t>(solver_.steps()); }
+
+  void advance() override {
+    const double dt = solver_.step();
+    r_.dt_min = std::min(r_.dt_min, dt);
+    if (r_.t_contact < 0 && solver_.contact_count() > 0) r_.t_contact = solver_.time();
+    const double trav = travel_at(solver_.time());
+    // Chip completion: sudden drop of the Eq 56 step below its running mean (section 5.4). A
+    // collapse-erosion event counts as a drop: it intercepts a step that would have fallen below
+    // collapse_ratio x its initial value.
+    const std::size_t ncoll = solver_.collapse_eroded_count();
+    const bool collapse_event = ncoll > ncoll_prev_;
+    ncoll_prev_ = ncoll;
+    const bool guard = s_.completion_guard == CompletionGuard::none ||
+                       (s_.completion_guard == CompletionGuard::damage_path && path_) ||
+                       (s_.completion_guard == CompletionGuard::separation && sep_);
+    if (detector_->update(dt, collapse_event, guard, trav, trav >= s_.min_travel)) {
+      r_.t_complete = solver_.time();
+      r_.travel_complete = trav;
+      r_.dt_drop_ratio = detector_->ratio();
+    }
+    const Vec2 f = solver_.tool_force();
+    acc_ += f * dt;
+    tacc_ += dt;
+    if (r_.t_contact >= 0) {
+      acc_all_ += f * dt;
+      tacc_all_ += dt;
+    }
+    if (s_.visibility) extend_cut_line();
+    if (++nacc_ == s_.record_every || r_.t_complete >= 0.0) record_window(dt, trav);
+    if (r_.t_complete >= 0.0 || dt < 1e-3 * r_.dt_initial) stopped_ = true;  // completed; collapsed nodes: broken
+  }
+
+  // The solver state and every accumulator of the loop.
+  void save(BinaryWriter& w) const override {
+    solver_.save_state(w);
+    detector_->save(w);
+    loop_state(*this, [&](double x) { w.f64(x); }, [&](const std::vector<double>& v) { w.vec(v); });
+    for (std::uint64_t u : {static_cast<std::uint64_t>(nacc_), static_cast<std::uint64_t>(path_),
+                            static_cast<std::uint64_t>(sep_), static_cast<std::uint64_t>(ncoll_prev_)})
+      w.u64(u);
+    w.u64(cand_.size());
+    for (const auto& sn : cand_) write_cutting_snapshot(w, sn);
+  }
+  void load(BinaryReader& rd) override {
+    solver_.load_state(rd);
+    detector_->load(rd);
+    loop_state(*this, [&](double& x) { x = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
+    nacc_ = static_cast<int>(rd.u64());
+    path_ = rd.u64() != 0;
+    sep_ = rd.u64() != 0;
+    ncoll_prev_ = static_cast<std::size_t>(rd.u64());
+    cand_.clear();
+    for (auto k = rd.u64(); k > 0; --k) cand_.push_back(read_cutting_snapshot(rd));
+  }
+
+  // The result once the driver is done: mean forces, the snapshots nearest k/n of the run and the
+  // final damage census.
+  CuttingResult finish(const DriveReport& report) {
+    r_.resumed_from_step = static_cast<long>(report.resumed_from_step);
+    r_.checkpoints_written = report.checkpoints_written;
+    r_.checkpoint_error = report.checkpoint_error;
+    r_.steps = solver_.steps();
+    r_.travel_first_drop = detector_->first_drop();
+    if (tacc_all_ > 0.0) {
+      r_.Fc_mean = -acc_all_.x() / tacc_all_;
+      r_.Ft_mean = acc_all_.y() / tacc_all_;
+    }
+    take_snapshot();  // the final state
+    if (s_.snapshots > 0) {
+      const double tr_end = cand_.back().travel;
+      for (int k = 1; k <= s_.snapshots; ++k) {
+        const double target = tr_end * k / s_.snapshots;
+        std::size_t best = 0;
+        for (std::size_t c = 0; c < cand_.size(); ++c) {
+          if (std::abs(cand_[c].travel - target) < std::abs(cand_[best].travel - target)) best = c;
+        }
+        r_.snapshots.push_back(cand_[best]);
+      }
+    }
+    damage_census(s_, d_, solver_, l_.x0, l_.yE, travel_at(solver_.time()), r_);
+    return std::move(r_);
+  }
+
+private:
+  static std::vector<Vec2> reference_gauss(const Discretisation& d) {
+    std::vector<Vec2> gx(d.gauss.size());
+    for (std::size_t g = 0; g < gx.size(); ++g) gx[g] = d.gauss[g].x;
+    return gx;
+  }
+
+  // Nodes on the bottom and the far end held; the row just below the cut line, sorted by x.
+  void hold_and_find_surface_row() {
+    const double tol = 1e-9 * l_.Lx;
+    for (std::size_t I = 0; I < d_.nodes.size(); ++I) {
+      const Vec2& X = d_.nodes[I];
+      if (X.y() < tol || X.x() > l_.Lx - tol) {
+        solver_.add_velocity_bc(static_cast<int>(I), 0, [](double) { return 0.0; });
+        solver_.add_velocity_bc(static_cast<int>(I), 1, [](double) { return 0.0; });
+      }
+      if (std::abs(X.y() - (l_.yE - 0.5 * l_.hy)) < 1e-6 * l_.hy) surface_row_.push_back(static_cast<int>(I));
+    }
+    std::sort(surface_row_.begin(), surface_row_.end(),
+              [&](int a, int b) { return d_.nodes[a].x() < d_.nodes[b].x(); });
+  }
+
+  double travel_at(double t) const { return std::max(0.0, tool_.displacement(t).x() - gap_); }
+
+  // Cut line: the tool edge separates the chip from the machined surface; the cut reaches the
+  // reference position of the surface-row material the edge has passed (interpolated).
+  void extend_cut_line() {
+    const double xe = E_.x() + tool_.displacement(solver_.time()).x();
+    const auto& xs = solver_.positions();
+    double tip = cut_tip_;
+    for (std::size_t k = 0; k + 1 < surface_row_.size(); ++k) {
+      const int a = surface_row_[k], b = surface_row_[k + 1];
+      if (xs[a].x() <= xe && xs[b].x() > xe) {
+        const double u = (xe - xs[a].x()) / (xs[b].x() - xs[a].x());
+        tip = d_.nodes[a].x() + u * (d_.nodes[b].x() - d_.nodes[a].x());
+        break;
+      }
+    }
+    if (tip >= cut_tip_ + 0.5 * l_.hx) {
+      solver_.add_opaque_segment({Vec2(cut_tip_, l_.yE), Vec2(tip, l_.yE)});
+      cut_tip_ = tip;
+    }
+  }
+
+  // One force window: its means, the first failure, the damage and separation paths, a snapshot.
+  void record_window(double dt, double trav) {
+    r_.t.push_back(solver_.time());
+    r_.travel.push_back(trav);
+    r_.Fc.push_back(-acc_.x() / tacc_);  // resistance of the workpiece to the tool's advance
+    r_.Ft.push_back(acc_.y() / tacc_);   // thrust: pushes the tool away from the workpiece (+y)
+    r_.dt.push_back(dt);
+    r_.Fc_peak = std::max(r_.Fc_peak, r_.Fc.back());
+    acc_.setZero();
+    tacc_ = 0.0;
+    nacc_ = 0;
+    if (progress_) progress_(solver_.time() / t_end_);
+    if (r_.travel_first_failure < 0.0 && r_.t_contact >= 0.0) {
+      for (std::size_t g = 0; g < solver_.num_gauss(); ++g) {
+        const auto dm = solver_.damage(g);
+        if (dm[0] + dm[1] + dm[2] > 0.0) {
+          r_.travel_first_failure = trav;
+          r_.Fc_first_failure = r_.Fc.back();
+          break;
+        }
+      }
+    }
+    auto damaged = [&](std::size_t g) {
+      const auto dm = solver_.damage(g);
+      return dm[0] > 0.5 || dm[1] > 0.5;
+    };
+    auto separated = [&](std::size_t g) { return solver_.eroded(g); };
+    if (!path_ && r_.t_contact >= 0.0 && paths_.connected(damaged, cut_tip_, false)) {
+      path_ = true;
+      r_.travel_path = trav;
+    }
+    if (!sep_ && r_.t_contact >= 0.0 && paths_.connected(separated, cut_tip_, true)) {
+      sep_ = true;
+      r_.travel_separated = trav;
+    }
+    if (s_.snapshots > 0 && trav >= next_snap_) {
+      take_snapshot();
+      next_snap_ = trav + 0.25 * l_.hx;
+    }
+  }
+
+  void take_snapshot() {
     CuttingSnapshot sn;
-    sn.t = solver.time();
+    sn.t = solver_.time();
     sn.travel = travel_at(sn.t);
-    for (std::size_t g = 0; g < solver.num_gauss(); ++g) {
-      const Vec2 x = solver.gauss_position(g);
-      const auto dm = solver.damage(g);
+    for (std::size_t g = 0; g < solver_.num_gauss(); ++g) {
+      const Vec2 x = solver_.gauss_position(g);
+      const auto dm = solver_.damage(g);
       sn.x.push_back(x.x());
       sn.y.push_back(x.y());
       sn.fibre.push_back(dm[0]);
       sn.matrix.push_back(dm[1]);
     }
-    cand.push_back(std::move(sn));
-  };
-  // Edge-to-surface path search in the reference configuration (completion guard, diagnostics).
-  std::vector<Vec2> gx(d.gauss.size());
-  for (std::size_t g = 0; g < gx.size(); ++g) gx[g] = d.gauss[g].x;
-  EdgeSurfacePath paths(std::move(gx), hx, hy, yE, Ly);
-  auto damaged = [&](std::size_t g) {
-    const auto dm = solver.damage(g);
-    return dm[0] > 0.5 || dm[1] > 0.5;
-  };
-  auto separated = [&](std::size_t g) { return solver.eroded(g); };
-  bool path = false, sep = false;
-  std::size_t ncoll_prev = 0;
-  DropDetector detector(s.drop, s.drop_window, r.dt_initial);
-  // The loop through the shared driver (checkpoints of cutbench run --run-cache): the solver state
-  // and every accumulator of this loop are the run's state.
-  auto loop_state = [&](auto&& f64, auto&& vec) {
-    for (double* p : {&acc.x(), &acc.y(), &acc_all.x(), &acc_all.y(), &tacc, &tacc_all, &cut_tip, &next_snap,
-                      &r.t_contact, &r.dt_min, &r.Fc_peak, &r.travel_first_failure, &r.Fc_first_failure,
-                      &r.travel_path, &r.travel_separated})
+    cand_.push_back(std::move(sn));
+  }
+
+  // Every accumulator of the loop, in checkpoint order (Self: const to save, mutable to load).
+  template <class Self, class F64, class Vec>
+  static void loop_state(Self& self, F64&& f64, Vec&& vec) {
+    for (auto* p : {&self.acc_.x(), &self.acc_.y(), &self.acc_all_.x(), &self.acc_all_.y(), &self.tacc_,
+                    &self.tacc_all_, &self.cut_tip_, &self.next_snap_, &self.r_.t_contact, &self.r_.dt_min,
+                    &self.r_.Fc_peak, &self.r_.travel_first_failure, &self.r_.Fc_first_failure, &self.r_.travel_path,
+                    &self.r_.travel_separated})
       f64(*p);
-    for (std::vector<double>* v : {&r.t, &r.travel, &r.Fc, &r.Ft, &r.dt}) vec(*v);
-  };
-  bool stopped = false;
-  CallbackRun loop;
-  loop.finished = [&] { return stopped || !(solver.time() < t_end); };
-  loop.count = [&] { return static_cast<std::size_t>(solver.steps()); };
-  loop.saver = [&](BinaryWriter& w) {
-    solver.save_state(w);
-    detector.save(w);
-    loop_state([&](double& x) { w.f64(x); }, [&](std::vector<double>& v) { w.vec(v); });
-    for (std::uint64_t u : {static_cast<std::uint64_t>(nacc), static_cast<std::uint64_t>(path),
-                            static_cast<std::uint64_t>(sep), static_cast<std::uint64_t>(ncoll_prev)})
-      w.u64(u);
-    w.u64(cand.size());
-    for (const auto& sn : cand) write_cutting_snapshot(w, sn);
-  };
-  loop.loader = [&](BinaryReader& rd) {
-    solver.load_state(rd);
-    detector.load(rd);
-    loop_state([&](double& x) { x = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
-    nacc = static_cast<int>(rd.u64());
-    path = rd.u64() != 0;
-    sep = rd.u64() != 0;
-    ncoll_prev = static_cast<std::size_t>(rd.u64());
-    cand.clear();
-    for (auto k = rd.u64(); k > 0; --k) cand.push_back(read_cutting_snapshot(rd));
-  };
-  loop.step = [&] {
-    const double dt = solver.step();
-    r.dt_min = std::min(r.dt_min, dt);
-    if (r.t_contact < 0 && solver.contact_count() > 0) r.t_contact = solver.time();
-    const double trav = travel_at(solver.time());
-    // Chip completion: sudden drop of the Eq 56 step below its running mean (section 5.4). A
-    // collapse-erosion event counts as a drop: it intercepts a step that would have fallen below
-    // collapse_ratio x its initial value.
-    const std::size_t ncoll = solver.collapse_eroded_count();
-    const bool collapse_event = ncoll > ncoll_prev;
-    ncoll_prev = ncoll;
-    const bool guard = s.completion_guard == CompletionGuard::none ||
-                       (s.completion_guard == CompletionGuard::damage_path && path) ||
-                       (s.completion_guard == CompletionGuard::separation && sep);
-    if (detector.update(dt, collapse_event, guard, trav, trav >= s.min_travel)) {
-      r.t_complete = solver.time();
-      r.travel_complete = trav;
-      r.dt_drop_ratio = detector.ratio();
-    }
-    const Vec2 f = solver.tool_force();
-    acc += f * dt;
-    tacc += dt;
-    if (r.t_contact >= 0) {
-      acc_all += f * dt;
-      tacc_all += dt;
-    }
-    // Cut line: the tool edge separates the chip from the machined surface; the cut reaches the
-    // reference position of the surface-row material the edge has passed (interpolated).
-    if (s.visibility) {
-      const double xe = E.x() + tool.displacement(solver.time()).x();
-      const auto& xs = solver.positions();
-      double tip = cut_tip;
-      for (std::size_t k = 0; k + 1 < surface_row.size(); ++k) {
-        const int a = surface_row[k], b = surface_row[k + 1];
-        if (xs[a].x() <= xe && xs[b].x() > xe) {
-          const double u = (xe - xs[a].x()) / (xs[b].x() - xs[a].x());
-          tip = d.nodes[a].x() + u * (d.nodes[b].x() - d.nodes[a].x());
-          break;
-        }
-      }
-      if (tip >= cut_tip + 0.5 * hx) {
-        solver.add_opaque_segment({Vec2(cut_tip, yE), Vec2(tip, yE)});
-        cut_tip = tip;
-      }
-    }
-    if (++nacc == s.record_every || r.t_complete >= 0.0) {
-      r.t.push_back(solver.time());
-      r.travel.push_back(trav);
-      r.Fc.push_back(-acc.x() / tacc);  // resistance of the workpiece to the tool's advance
-      r.Ft.push_back(acc.y() / tacc);   // thrust: pushes the tool away from the workpiece (+y)
-      r.dt.push_back(dt);
-      r.Fc_peak = std::max(r.Fc_peak, r.Fc.back());
-      acc.setZero();
-      tacc = 0.0;
-      nacc = 0;
-      if (progress) progress(solver.time() / t_end);
-      if (r.travel_first_failure < 0.0 && r.t_contact >= 0.0) {
-        for (std::size_t g = 0; g < solver.num_gauss(); ++g) {
-          const auto dm = solver.damage(g);
-          if (dm[0] + dm[1] + dm[2] > 0.0) {
-            r.travel_first_failure = trav;
-            r.Fc_first_failure = r.Fc.back();
-            break;
-          }
-        }
-      }
-      if (!path && r.t_contact >= 0.0 && paths.connected(damaged, cut_tip, false)) {
-        path = true;
-        r.travel_path = trav;
-      }
-      if (!sep && r.t_contact >= 0.0 && paths.connected(separated, cut_tip, true)) {
-        sep = true;
-        r.travel_separated = trav;
-      }
-      if (s.snapshots > 0 && trav >= next_snap) {
-        take_snapshot();
-        next_snap = trav + 0.25 * hx;
-      }
-    }
-    if (r.t_complete >= 0.0 || dt < 1e-3 * r.dt_initial) stopped = true;  // completed; collapsed nodes: broken
-  };
-  const DriveReport drive_report = drive(loop, "efg_cutting");
-  r.resumed_from_step = static_cast<long>(drive_report.resumed_from_step);
-  r.checkpoints_written = drive_report.checkpoints_written;
-  r.checkpoint_error = drive_report.checkpoint_error;
-  r.steps = solver.steps();
-  r.travel_first_drop = detector.first_drop();
-  if (tacc_all > 0.0) {
-    r.Fc_mean = -acc_all.x() / tacc_all;
-    r.Ft_mean = acc_all.y() / tacc_all;
+    for (auto* v : {&self.r_.t, &self.r_.travel, &self.r_.Fc, &self.r_.Ft, &self.r_.dt}) vec(*v);
   }
-  // Final state and the snapshots nearest k/n of the run.
-  take_snapshot();
-  if (s.snapshots > 0) {
-    const double tr_end = cand.back().travel;
-    for (int k = 1; k <= s.snapshots; ++k) {
-      const double target = tr_end * k / s.snapshots;
-      std::size_t best = 0;
-      for (std::size_t c = 0; c < cand.size(); ++c) {
-        if (std::abs(cand[c].travel - target) < std::abs(cand[best].travel - target)) best = c;
-      }
-      r.snapshots.push_back(cand[best]);
-    }
-  }
-  damage_census(s, d, solver, x0, yE, travel_at(solver.time()), r);
-  return r;
+
+  const CuttingSetup& s_;
+  const std::function<void(double)>& progress_;
+  const Lattice l_;
+  const Discretisation d_;
+  ExplicitEFG solver_;
+  const double xf_, V_, gap_;
+  const Vec2 E_;
+  const RigidTool tool_;
+  EdgeSurfacePath paths_;
+  std::vector<int> surface_row_;  // nodes of the row just below the cut line, by x
+  CuttingResult r_;
+  double t_end_ = 0.0;
+  Vec2 acc_ = Vec2::Zero(), acc_all_ = Vec2::Zero();
+  double tacc_ = 0.0, tacc_all_ = 0.0;
+  int nacc_ = 0;
+  double cut_tip_;  // reference x of the cut line's end
+  std::vector<CuttingSnapshot> cand_;
+  double next_snap_ = 0.0;
+  bool path_ = false, sep_ = false, stopped_ = false;
+  std::size_t ncoll_prev_ = 0;
+  std::optional<DropDetector> detector_;
+};
+}  // namespace
+
+CuttingResult run_cutting(const CuttingSetup& s, const std::function<void(double)>& progress) {
+  CuttingRun run(s, progress);
+  const DriveReport report = drive(run, "efg_cutting");
+  return run.finish(report);
 }
 
 }  // namespace cutbench::efg

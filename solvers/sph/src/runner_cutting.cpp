@@ -287,166 +287,223 @@ void heat_audit(const std::vector<Vec2>& x, const std::vector<char>& fixed, cons
 
 }  // namespace
 
-CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
+namespace {
+// The workpiece lattice of a cutting run (dx = height / (particles_over_height - 1)) and its
+// clamped layers at the bottom and the far end.
+struct Workpiece {
+  double dx = 0.0;
+  std::size_t nx = 0;
+  std::vector<Vec2> x;
+  std::vector<char> fixed;
+};
+
+Workpiece cutting_workpiece(const CuttingSetup& c) {
   if (c.particles_over_height < 4) throw InputError("particles_over_height", "needs at least 4");
   if (!(c.uncut_thickness > 0.0 && c.uncut_thickness < c.height)) throw InputError(glossary::kDepthOfCut, "must be in (0, height)");
   if (!(c.cut_distance > 0.0 && c.cut_distance < c.length)) throw InputError("cut_distance", "must be in (0, length)");
-  const double dx = c.height / static_cast<double>(c.particles_over_height - 1);
-  const auto nx = static_cast<std::size_t>(std::lround(c.length / dx)) + 1;
+  Workpiece w;
+  w.dx = c.height / static_cast<double>(c.particles_over_height - 1);
+  w.nx = static_cast<std::size_t>(std::lround(c.length / w.dx)) + 1;
   const auto ny = static_cast<std::size_t>(c.particles_over_height);
-  const auto x = rectangle_lattice(nx, ny, 0.0, dx * static_cast<double>(nx - 1), 0.0, c.height);
-  std::vector<char> fixed(x.size(), 0);
-  const double lim = (static_cast<double>(c.fixed_layers) - 0.5) * dx;
-  for (std::size_t i = 0; i < x.size(); ++i) fixed[i] = x[i].y() < lim || x[i].x() < lim;
+  w.x = rectangle_lattice(w.nx, ny, 0.0, w.dx * static_cast<double>(w.nx - 1), 0.0, c.height);
+  w.fixed.assign(w.x.size(), 0);
+  const double lim = (static_cast<double>(c.fixed_layers) - 0.5) * w.dx;
+  for (std::size_t i = 0; i < w.x.size(); ++i) w.fixed[i] = w.x[i].y() < lim || w.x[i].x() < lim;
+  return w;
+}
 
-  const CuttingInputs in = cutting_inputs(c);
-  SolidSph s(x, dx, in.material, in.options, in.h_over_dx);
-  s.set_fixed(fixed);
-  s.enable_thermal(in.thermal, fixed);
-  const double x_tool = dx * static_cast<double>(nx - 1) + 0.5 * dx + c.edge_radius + 0.5 * dx;
-  const double y_low = c.height - c.uncut_thickness;
-  s.set_tool(cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height),
-             Vec2(x_tool, y_low), Vec2(-c.speed, 0.0), in.contact);
-  if (c.tool_conduction) s.set_tool_thermal(in.tool_heat, std::max(c.tool_depth, 8.0 * dx));
+// One cutting run as the shared driver sees it: the SPH solid with the tool and its heat, the
+// force windows, the steady-part force split by tool face, the rake-face temperature sample and
+// the snapshot schedule; the whole state saved for checkpoints.
+class CuttingRun final : public SteppedRun {
+public:
+  CuttingRun(const CuttingSetup& c, const ProgressFn& progress)
+      : c_(c), progress_(progress), w_(cutting_workpiece(c)), in_(cutting_inputs(c)),
+        s_(w_.x, w_.dx, in_.material, in_.options, in_.h_over_dx), y_low_(c.height - c.uncut_thickness),
+        tool_(cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height)),
+        t_end_(c.cut_distance / c.speed), window_(std::max(c.history_window, 1e-12)), t_next_(window_),
+        t_steady_(c.steady_from * t_end_),
+        // contact normals of the rake and clearance faces (out of the tool, see cutting_tool)
+        n_rake_(-std::cos(c.rake), std::sin(c.rake)), n_flank_(std::sin(c.clearance), -std::cos(c.clearance)),
+        n_snap_(std::max(1, c.snapshots)) {
+    const double dx = w_.dx;
+    s_.set_fixed(w_.fixed);
+    s_.enable_thermal(in_.thermal, w_.fixed);
+    const double x_tool = dx * static_cast<double>(w_.nx - 1) + 0.5 * dx + c.edge_radius + 0.5 * dx;
+    s_.set_tool(cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height), Vec2(x_tool, y_low_),
+                Vec2(-c.speed, 0.0), in_.contact);
+    if (c.tool_conduction) s_.set_tool_thermal(in_.tool_heat, std::max(c.tool_depth, 8.0 * dx));
+    r_.dx = dx;
+    r_.particles = w_.x.size();
+  }
 
-  CuttingResult r;
-  r.dx = dx;
-  r.particles = x.size();
-  const double t_end = c.cut_distance / c.speed;
-  const double window = std::max(c.history_window, 1e-12);
-  double acc_fc = 0.0, acc_ft = 0.0, acc_t = 0.0, t_next = window;
-  double steady_fc = 0.0, steady_ft = 0.0, steady_t = 0.0;
-  const double t_steady = c.steady_from * t_end;
-  auto take_snapshot = [&]() { return workpiece_snapshot(s, x.size()); };
-  // contact normals of the rake and clearance faces (out of the tool, see cutting_tool)
-  const Vec2 n_rake(-std::cos(c.rake), std::sin(c.rake)), n_flank(std::sin(c.clearance), -std::cos(c.clearance));
-  Vec2 zone_force[3] = {Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};  // rake, edge, flank (x dt)
-  double rake_ft = 0.0, rake_fn = 0.0, rake_slip = 0.0, rake_count = 0.0;
-  // Rake-face temperature: free particles within 1.5 dx of the tool whose contact normal points
-  // against the cut (the rake face), above the edge (mean; NaN when none).
-  const auto tool = cutting_tool(c.rake, c.clearance, c.edge_radius, Vec2::Zero(), 10.0 * c.height);
-  auto rake_face_temperature = [&]() { return rake_face_mean_temperature(s, fixed, *tool, dx, c.edge_radius); };
-  double rake_avg_sum = 0.0;
-  int rake_avg_n = 0;
-  const int n_snap = std::max(1, c.snapshots);
-  int snap_taken = 0;
-  // The loop through the shared driver (checkpoints of cutbench run --run-cache): the solver state
-  // and every accumulator of this loop are the run's state.
-  auto loop_state = [&](auto&& f64, auto&& vec) {
-    for (double* d : {&acc_fc, &acc_ft, &acc_t, &t_next, &steady_fc, &steady_ft, &steady_t, &rake_ft, &rake_fn,
-                      &rake_slip, &rake_count, &rake_avg_sum, &zone_force[0].x(), &zone_force[0].y(),
-                      &zone_force[1].x(), &zone_force[1].y(), &zone_force[2].x(), &zone_force[2].y()})
-      f64(*d);
-    for (std::vector<double>* v : {&r.t, &r.cut, &r.fc, &r.ft}) vec(*v);
-  };
-  bool stopped = false;
-  CallbackRun loop;
-  loop.finished = [&] { return stopped || !(s.time() < t_end); };
-  loop.count = [&] { return static_cast<std::size_t>(s.steps()); };
-  loop.saver = [&](BinaryWriter& w) {
-    s.save_state(w);
-    loop_state([&](double& d) { w.f64(d); }, [&](std::vector<double>& v) { w.vec(v); });
-    w.u64(static_cast<std::uint64_t>(rake_avg_n));
-    w.u64(static_cast<std::uint64_t>(snap_taken));
-    w.u64(r.snapshots.size());
-    for (const auto& sn : r.snapshots) write_snapshot(w, sn);
-  };
-  loop.loader = [&](BinaryReader& rd) {
-    s.load_state(rd);
-    loop_state([&](double& d) { d = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
-    rake_avg_n = static_cast<int>(rd.u64());
-    snap_taken = static_cast<int>(rd.u64());
-    r.snapshots.clear();
-    for (auto k = rd.u64(); k > 0; --k) r.snapshots.push_back(read_snapshot(rd));
-  };
-  loop.step = [&] {
-    const double dt = std::min(s.stable_time_step(), t_end - s.time());
+  bool done() const override { return stopped_ || !(s_.time() < t_end_); }
+  std::size_t steps() const override { return static_cast<std::size_t>(s_.steps()); }
+
+  void advance() override {
+    const double dt = std::min(s_.stable_time_step(), t_end_ - s_.time());
     if (!(dt > 0.0)) {
-      stopped = true;
+      stopped_ = true;
       return;
     }
-    s.step(dt);
-    const double fc = s.tool_force().x(), ft = s.tool_force().y();  // force on the tool
+    s_.step(dt);
+    const double fc = s_.tool_force().x(), ft = s_.tool_force().y();  // force on the tool
     // tool moves in -x: the cutting force resists it (+x on the tool); thrust pushes it up (+y)
-    acc_fc += fc * dt;
-    acc_ft += ft * dt;
-    acc_t += dt;
-    if (s.time() >= t_steady) {
-      steady_fc += fc * dt;
-      steady_ft += ft * dt;
-      steady_t += dt;
-      for (const auto& k : s.contacts()) {
-        const int zone = k.normal.dot(n_rake) > 0.9999 ? 0 : (k.normal.dot(n_flank) > 0.9999 ? 2 : 1);
-        zone_force[zone] -= (k.fn + k.ft) * dt;
-        if (zone == 0) {
-          rake_fn += k.fn.norm();
-          rake_ft += k.ft.norm();
-          rake_count += 1.0;
-          if (k.ft.norm() >= 0.999 * k.limit) rake_slip += 1.0;
-        }
+    acc_fc_ += fc * dt;
+    acc_ft_ += ft * dt;
+    acc_t_ += dt;
+    if (s_.time() >= t_steady_) add_steady(fc, ft, dt);
+    if (snap_taken_ < n_snap_ - 1 && s_.time() >= t_end_ * static_cast<double>(snap_taken_ + 1) / n_snap_) {
+      r_.snapshots.push_back(workpiece_snapshot(s_, w_.x.size()));
+      ++snap_taken_;
+    }
+    if (s_.time() >= t_next_ || s_.time() >= t_end_) record_window();
+  }
+
+  // The solver state and every accumulator of the loop.
+  void save(BinaryWriter& w) const override {
+    s_.save_state(w);
+    loop_state(*this, [&](double d) { w.f64(d); }, [&](const std::vector<double>& v) { w.vec(v); });
+    w.u64(static_cast<std::uint64_t>(rake_avg_n_));
+    w.u64(static_cast<std::uint64_t>(snap_taken_));
+    w.u64(r_.snapshots.size());
+    for (const auto& sn : r_.snapshots) write_snapshot(w, sn);
+  }
+  void load(BinaryReader& rd) override {
+    s_.load_state(rd);
+    loop_state(*this, [&](double& d) { d = rd.f64(); }, [&](std::vector<double>& v) { v = rd.vec(); });
+    rake_avg_n_ = static_cast<int>(rd.u64());
+    snap_taken_ = static_cast<int>(rd.u64());
+    r_.snapshots.clear();
+    for (auto k = rd.u64(); k > 0; --k) r_.snapshots.push_back(read_snapshot(rd));
+  }
+
+  // The result once the driver is done: steady-part means, temperatures, snapshots, chip metrics
+  // and the heat audit.
+  CuttingResult finish(const DriveReport& report) {
+    CuttingResult& r = r_;
+    r.resumed_from_step = report.resumed_from_step;
+    r.checkpoints_written = report.checkpoints_written;
+    r.checkpoint_error = report.checkpoint_error;
+    r.steps = s_.steps();
+    r.fc_mean = steady_t_ > 0.0 ? steady_fc_ / steady_t_ : nan_value();
+    r.ft_mean = steady_t_ > 0.0 ? steady_ft_ / steady_t_ : nan_value();
+    if (steady_t_ > 0.0) {
+      r.force_rake = zone_force_[0] / steady_t_;
+      r.force_edge = zone_force_[1] / steady_t_;
+      r.force_flank = zone_force_[2] / steady_t_;
+    }
+    r.rake_friction_ratio = rake_fn_ > 0.0 ? rake_ft_ / rake_fn_ : nan_value();
+    r.rake_slip_fraction = rake_count_ > 0.0 ? rake_slip_ / rake_count_ : nan_value();
+    r.T_max = 0.0;
+    double chip_top = 0.0;
+    for (std::size_t i = 0; i < w_.x.size(); ++i) {
+      const Vec2& p = s_.positions()[i];
+      if (s_.temperature()[i] > r.T_max) {
+        r.T_max = s_.temperature()[i];
+        r.T_max_at = p - s_.tool_position();
+      }
+      chip_top = std::max(chip_top, p.y());
+    }
+    r.rake_temperature = rake_face_temperature();
+    r.rake_temperature_avg = rake_avg_n_ ? rake_avg_sum_ / rake_avg_n_ : nan_value();
+    tool_temperatures(c_, s_, *tool_, w_.dx, r);
+    r.chip_height = chip_top - c_.height;
+    r.snapshot = workpiece_snapshot(s_, w_.x.size());
+    r.snapshots.push_back(r.snapshot);
+    r.tool_snapshot = tool_snapshot(s_);
+    r.friction_heat = s_.friction_heat();
+    r.friction_heat_tool = s_.friction_heat_to_tool();
+    r.tool_share = s_.tool_heat_share();
+    const double rho_c = in_.thermal.heat.density * in_.thermal.heat.specific_heat;
+    chip_metrics(c_, w_.x, s_, rho_c, in_.thermal.boundary.T_ambient, r);
+    heat_audit(w_.x, w_.fixed, s_, y_low_, rho_c, in_.thermal.boundary.T_ambient, r);
+    return std::move(r_);
+  }
+
+private:
+  // Rake-face temperature: free particles within 1.5 dx of the tool whose contact normal points
+  // against the cut (the rake face), above the edge (mean; NaN when none).
+  double rake_face_temperature() const {
+    return rake_face_mean_temperature(s_, w_.fixed, *tool_, w_.dx, c_.edge_radius);
+  }
+
+  // The steady part: mean forces and the force split by the tool face of each contact normal
+  // (rake face, rounded edge, clearance face), with the rake-face friction use.
+  void add_steady(double fc, double ft, double dt) {
+    steady_fc_ += fc * dt;
+    steady_ft_ += ft * dt;
+    steady_t_ += dt;
+    for (const auto& k : s_.contacts()) {
+      const int zone = k.normal.dot(n_rake_) > 0.9999 ? 0 : (k.normal.dot(n_flank_) > 0.9999 ? 2 : 1);
+      zone_force_[zone] -= (k.fn + k.ft) * dt;
+      if (zone == 0) {
+        rake_fn_ += k.fn.norm();
+        rake_ft_ += k.ft.norm();
+        rake_count_ += 1.0;
+        if (k.ft.norm() >= 0.999 * k.limit) rake_slip_ += 1.0;
       }
     }
-    if (snap_taken < n_snap - 1 && s.time() >= t_end * static_cast<double>(snap_taken + 1) / n_snap) {
-      r.snapshots.push_back(take_snapshot());
-      ++snap_taken;
-    }
-    if (s.time() >= t_next || s.time() >= t_end) {
-      r.t.push_back(s.time());
-      r.cut.push_back(s.time() * c.speed);
-      r.fc.push_back(acc_fc / acc_t);
-      r.ft.push_back(acc_ft / acc_t);
-      acc_fc = acc_ft = acc_t = 0.0;
-      t_next += window;
-      if (s.time() >= t_steady) {  // time average of the rake-face sample over the steady part
-        const double tr = rake_face_temperature();
-        if (std::isfinite(tr)) {
-          rake_avg_sum += tr;
-          ++rake_avg_n;
-        }
+  }
+
+  // One force window: its means, and the rake-face temperature sample of the steady part.
+  void record_window() {
+    r_.t.push_back(s_.time());
+    r_.cut.push_back(s_.time() * c_.speed);
+    r_.fc.push_back(acc_fc_ / acc_t_);
+    r_.ft.push_back(acc_ft_ / acc_t_);
+    acc_fc_ = acc_ft_ = acc_t_ = 0.0;
+    t_next_ += window_;
+    if (s_.time() >= t_steady_) {  // time average of the rake-face sample over the steady part
+      const double tr = rake_face_temperature();
+      if (std::isfinite(tr)) {
+        rake_avg_sum_ += tr;
+        ++rake_avg_n_;
       }
-      if (progress)
-        progress(s.time() / t_end, "cut " + std::to_string(s.time() * c.speed * 1e3) + " mm, step " +
-                                       std::to_string(s.steps()));
     }
-  };
-  const DriveReport drive_report = drive(loop, "sph_cutting");
-  r.resumed_from_step = drive_report.resumed_from_step;
-  r.checkpoints_written = drive_report.checkpoints_written;
-  r.checkpoint_error = drive_report.checkpoint_error;
-  r.steps = s.steps();
-  r.fc_mean = steady_t > 0.0 ? steady_fc / steady_t : nan_value();
-  r.ft_mean = steady_t > 0.0 ? steady_ft / steady_t : nan_value();
-  if (steady_t > 0.0) {
-    r.force_rake = zone_force[0] / steady_t;
-    r.force_edge = zone_force[1] / steady_t;
-    r.force_flank = zone_force[2] / steady_t;
+    if (progress_)
+      progress_(s_.time() / t_end_, "cut " + std::to_string(s_.time() * c_.speed * 1e3) + " mm, step " +
+                                        std::to_string(s_.steps()));
   }
-  r.rake_friction_ratio = rake_fn > 0.0 ? rake_ft / rake_fn : nan_value();
-  r.rake_slip_fraction = rake_count > 0.0 ? rake_slip / rake_count : nan_value();
-  r.T_max = 0.0;
-  double chip_top = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const Vec2& p = s.positions()[i];
-    if (s.temperature()[i] > r.T_max) {
-      r.T_max = s.temperature()[i];
-      r.T_max_at = p - s.tool_position();
-    }
-    chip_top = std::max(chip_top, p.y());
+
+  // Every accumulator of the loop, in checkpoint order (Self: const to save, mutable to load).
+  template <class Self, class F64, class Vec>
+  static void loop_state(Self& self, F64&& f64, Vec&& vec) {
+    for (auto* d : {&self.acc_fc_, &self.acc_ft_, &self.acc_t_, &self.t_next_, &self.steady_fc_, &self.steady_ft_,
+                    &self.steady_t_, &self.rake_ft_, &self.rake_fn_, &self.rake_slip_, &self.rake_count_,
+                    &self.rake_avg_sum_, &self.zone_force_[0].x(), &self.zone_force_[0].y(), &self.zone_force_[1].x(),
+                    &self.zone_force_[1].y(), &self.zone_force_[2].x(), &self.zone_force_[2].y()})
+      f64(*d);
+    for (auto* v : {&self.r_.t, &self.r_.cut, &self.r_.fc, &self.r_.ft}) vec(*v);
   }
-  r.rake_temperature = rake_face_temperature();
-  r.rake_temperature_avg = rake_avg_n ? rake_avg_sum / rake_avg_n : nan_value();
-  tool_temperatures(c, s, *tool, dx, r);
-  r.chip_height = chip_top - c.height;
-  r.snapshot = take_snapshot();
-  r.snapshots.push_back(r.snapshot);
-  r.tool_snapshot = tool_snapshot(s);
-  r.friction_heat = s.friction_heat();
-  r.friction_heat_tool = s.friction_heat_to_tool();
-  r.tool_share = s.tool_heat_share();
-  const double rho_c = in.thermal.heat.density * in.thermal.heat.specific_heat;
-  chip_metrics(c, x, s, rho_c, in.thermal.boundary.T_ambient, r);
-  heat_audit(x, fixed, s, y_low, rho_c, in.thermal.boundary.T_ambient, r);
-  return r;
+
+  const CuttingSetup& c_;
+  const ProgressFn& progress_;
+  const Workpiece w_;
+  const CuttingInputs in_;
+  SolidSph s_;
+  const double y_low_;
+  const std::unique_ptr<RoundedPolygon> tool_;  // the tool's shape, for the rake-face measurements
+  CuttingResult r_;
+  const double t_end_, window_;
+  double acc_fc_ = 0.0, acc_ft_ = 0.0, acc_t_ = 0.0, t_next_;
+  double steady_fc_ = 0.0, steady_ft_ = 0.0, steady_t_ = 0.0;
+  const double t_steady_;
+  const Vec2 n_rake_, n_flank_;
+  Vec2 zone_force_[3] = {Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};  // rake, edge, flank (x dt)
+  double rake_ft_ = 0.0, rake_fn_ = 0.0, rake_slip_ = 0.0, rake_count_ = 0.0;
+  double rake_avg_sum_ = 0.0;
+  int rake_avg_n_ = 0;
+  const int n_snap_;
+  int snap_taken_ = 0;
+  bool stopped_ = false;
+};
+}  // namespace
+
+CuttingResult run_cutting(const CuttingSetup& c, const ProgressFn& progress) {
+  CuttingRun run(c, progress);
+  const DriveReport report = drive(run, "sph_cutting");
+  return run.finish(report);
 }
 
 namespace {

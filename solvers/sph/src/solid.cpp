@@ -56,32 +56,12 @@ void SolidSph::enable_thermal(ThermalOptions options, std::vector<char> fixed_te
 void SolidSph::set_tool_thermal(HeatMaterial tool_heat, double depth) {
   if (!tool_ || !thermal_) throw InputError("tool", "set_tool and enable_thermal must come first");
   if (!(depth > 6.0 * dx_)) throw InputError("depth", "tool band must be deeper than 6 particle spacings");
-  tool_heat_ = tool_heat;
-  tool_x_.clear();
-  // lattice aligned with the lowest edge point (tool-frame origin of cutting_tool(...) is arbitrary:
-  // use the current world frame relative to tool_pos_)
-  const int m = static_cast<int>(std::ceil(depth / dx_)) + 1;
-  for (int j = -m; j <= m; ++j)
-    for (int i = -m; i <= m; ++i) {
-      const Vec2 p((i + 0.5) * dx_, (j + 0.5) * dx_);
-      if (p.norm() > depth) continue;
-      if (tool_->at(p).distance <= -0.45 * dx_) tool_x_.push_back(p);
-    }
-  const std::size_t n = tool_x_.size();
-  tool_V_.assign(n, dx_ * dx_);
-  tool_T_.assign(n, th_.boundary.T_ambient);
-  tool_fixed_.assign(n, 0);
-  for (std::size_t i = 0; i < n; ++i) tool_fixed_[i] = tool_x_[i].norm() > depth - 3.0 * dx_;
-  tool_nl_ = build_neighbours(tool_x_, kernel_.support());
-  const ParticleView view{tool_x_, tool_V_, tool_nl_, kernel_};
-  const SurfaceDetection s = detect_free_surface(view, th_.surface);
-  heat_masks(tool_nl_, s, tool_fixed_, th_.brookshaw_band, th_.surface.lambda_interior, tool_use_fmfs_, tool_loss_);
-  tool_fmfs_.update(view);
-  tool_thermal_ = true;
+  tool_body_.build(*tool_, tool_heat, depth, dx_, kernel_, th_.surface, th_.brookshaw_band, th_.boundary.T_ambient);
   if (contact_.tool_heat_share >= 0.0) {
     tool_share_ = contact_.tool_heat_share;
-  } else {
-    const double e_tool = std::sqrt(tool_heat_.conductivity * tool_heat_.density * tool_heat_.specific_heat);
+  } else {  // effusivity partition
+    const HeatMaterial& tool = tool_body_.heat;
+    const double e_tool = std::sqrt(tool.conductivity * tool.density * tool.specific_heat);
     const double e_work = std::sqrt(th_.heat.conductivity * th_.heat.density * th_.heat.specific_heat);
     tool_share_ = e_tool / (e_tool + e_work);
   }
@@ -92,7 +72,7 @@ void SolidSph::deposit_friction_heat(std::size_t i, double heat) {
   friction_heat_ += heat;
   if (!thermal_ || t_fixed_[i]) return;
   double to_tool = 0.0;
-  if (tool_thermal_ && tool_share_ > 0.0) {
+  if (tool_body_.active && tool_share_ > 0.0) {
     to_tool = tool_share_ * heat;
     pending_tool_heat_[i] += to_tool;
   }
@@ -108,9 +88,7 @@ double SolidSph::shear_cap(std::size_t i) const {
 }
 
 double SolidSph::tool_heat_content() const {
-  double e = 0.0;
-  for (std::size_t i = 0; i < tool_x_.size(); ++i)
-    e += tool_heat_.density * tool_heat_.specific_heat * tool_V_[i] * (tool_T_[i] - th_.boundary.T_ambient);
+  double e = tool_body_.heat_content(th_.boundary.T_ambient);
   for (double q : pending_tool_heat_) e += q;  // friction heat not yet deposited on tool particles
   return e;
 }
@@ -147,8 +125,8 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
     if (plastic_dT_q_[i] != 0.0) plastic_heat_ += plastic_dT_q_[i];
   th_dt_acc_ += dt;
   ++th_steps_;
-  const double alpha_max = tool_thermal_ ? std::max(th_.heat.diffusivity(), tool_heat_.diffusivity())
-                                         : th_.heat.diffusivity();
+  const double alpha_max = tool_body_.active ? std::max(th_.heat.diffusivity(), tool_body_.heat.diffusivity())
+                                             : th_.heat.diffusivity();
   const double dt_limit = 0.1 * kernel_.h() * kernel_.h() / alpha_max;
   if (th_steps_ < th_.conduction_interval && th_dt_acc_ + dt < dt_limit) return;
   const int sub = std::max(1, static_cast<int>(std::ceil(th_dt_acc_ / dt_limit)));
@@ -170,10 +148,10 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   std::vector<double> rate, tool_rate;
   std::vector<Vec2> tool_world;
   NeighbourList cross;
-  std::vector<char> tool_loss = tool_loss_;
-  if (tool_thermal_) {
-    tool_world.resize(tool_x_.size());
-    for (std::size_t k = 0; k < tool_x_.size(); ++k) tool_world[k] = tool_x_[k] + tool_pos_;
+  ToolHeatBody& tb = tool_body_;
+  std::vector<char> tool_loss = tb.loss;
+  if (tb.active) {
+    tool_world = tb.world(tool_pos_);
     cross = build_cross_neighbours(x_, tool_world, kernel_.support());
     const double c2 = 2.25 * dx_ * dx_;
     for (std::size_t i = 0; i < n; ++i)
@@ -184,50 +162,39 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
         }
     // friction heat share of the tool: onto the (non-sink) tool particles in the support of the
     // heated workpiece particle, kernel-weighted; back to the workpiece particle if there are none
-    const double rc_tool = tool_heat_.density * tool_heat_.specific_heat;
     for (std::size_t i = 0; i < n; ++i) {
       const double q = pending_tool_heat_[i];
       if (q == 0.0) continue;
       pending_tool_heat_[i] = 0.0;
-      double wsum = 0.0;
-      for (std::size_t k = cross.begin(i); k < cross.end(i); ++k)
-        if (!tool_fixed_[cross.index[k]]) wsum += kernel_.value((x_[i] - tool_world[cross.index[k]]).norm());
-      if (wsum > 0.0) {
-        for (std::size_t k = cross.begin(i); k < cross.end(i); ++k) {
-          const std::size_t j = cross.index[k];
-          if (tool_fixed_[j]) continue;
-          const double w = kernel_.value((x_[i] - tool_world[j]).norm()) / wsum;
-          tool_T_[j] += q * w / (rc_tool * tool_V_[j]);
-        }
+      if (tb.receive(i, x_[i], q, cross, tool_world, kernel_)) {
         friction_heat_tool_ += q;
       } else {
         T_[i] += q / (rc * vol[i]);
       }
     }
   }
-  const ParticleView tool_view{tool_x_, tool_V_, tool_nl_, kernel_};
+  const ParticleView tool_view{tb.x, tb.V, tb.nl, kernel_};
   for (int k = 0; k < sub; ++k) {
     double sunk = 0.0, tool_sunk = 0.0;
     const double lost = heat_rates(view, T_, fm, use_fmfs, t_fixed_, loss, th_.heat, th_.boundary, rate, nullptr, &sunk);
     heat_lost_ += dt_th * lost;
     heat_sunk_ += dt_th * sunk;
-    if (tool_thermal_) {
+    if (tb.active) {
       const double tool_lost =
-          heat_rates(tool_view, tool_T_, th_.scheme == HeatScheme::fmfs ? &tool_fmfs_ : nullptr, tool_use_fmfs_,
-                     tool_fixed_, tool_loss, tool_heat_, th_.boundary, tool_rate, nullptr, &tool_sunk);
+          heat_rates(tool_view, tb.T, th_.scheme == HeatScheme::fmfs ? &tb.fmfs : nullptr, tb.use_fmfs, tb.fixed,
+                     tool_loss, tb.heat, th_.boundary, tool_rate, nullptr, &tool_sunk);
       heat_lost_ += dt_th * tool_lost;
       heat_sunk_ += dt_th * tool_sunk;
-      cross_body_conduction(x_, vol, T_, th_.heat, tool_world, tool_V_, tool_T_, tool_heat_, cross, kernel_, rate,
-                            tool_rate);
+      cross_body_conduction(x_, vol, T_, th_.heat, tool_world, tb.V, tb.T, tb.heat, cross, kernel_, rate, tool_rate);
       // cross-body heat into fixed particles (their rates were zeroed before the cross term)
       const double rcw = th_.heat.density * th_.heat.specific_heat;
-      const double rct = tool_heat_.density * tool_heat_.specific_heat;
+      const double rct = tb.heat.density * tb.heat.specific_heat;
       for (std::size_t i = 0; i < n; ++i)
         if (t_fixed_[i]) heat_sunk_ += dt_th * rate[i] * rcw * vol[i];
-      for (std::size_t i = 0; i < tool_T_.size(); ++i)
-        if (tool_fixed_[i]) heat_sunk_ += dt_th * tool_rate[i] * rct * tool_V_[i];
-      for (std::size_t i = 0; i < tool_T_.size(); ++i)
-        if (!tool_fixed_[i]) tool_T_[i] += dt_th * tool_rate[i];
+      for (std::size_t i = 0; i < tb.T.size(); ++i)
+        if (tb.fixed[i]) heat_sunk_ += dt_th * tool_rate[i] * rct * tb.V[i];
+      for (std::size_t i = 0; i < tb.T.size(); ++i)
+        if (!tb.fixed[i]) tb.T[i] += dt_th * tool_rate[i];
     }
     for (std::size_t i = 0; i < n; ++i)
       if (!t_fixed_[i]) T_[i] += dt_th * rate[i];
@@ -239,8 +206,8 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
       throw NumericalError("sph: non-finite temperature at workpiece particle " + std::to_string(i) + " (x " +
                            std::to_string(x_[i].x()) + " m, y " + std::to_string(x_[i].y()) + " m) at t = " +
                            std::to_string(time_) + " s, step " + std::to_string(steps_));
-  for (std::size_t i = 0; i < tool_T_.size(); ++i)
-    if (!std::isfinite(tool_T_[i]))
+  for (std::size_t i = 0; i < tb.T.size(); ++i)
+    if (!std::isfinite(tb.T[i]))
       throw NumericalError("sph: non-finite temperature at tool particle " + std::to_string(i) + " at t = " +
                            std::to_string(time_) + " s, step " + std::to_string(steps_));
 }
@@ -324,7 +291,7 @@ void SolidSph::save_state(BinaryWriter& w) const {
   w.pods(friction_history_);
   w.pods(pending_tool_heat_);
   w.pods(plastic_heat_at_);
-  w.pods(tool_T_);
+  w.pods(tool_body_.T);
   w.pods(surface_.surface);
   w.pods(surface_.lambda);
   w.pods(surface_.normal);
@@ -360,8 +327,8 @@ void SolidSph::load_state(BinaryReader& r) {
   pending_tool_heat_ = r.pods<double>();
   plastic_heat_at_ = r.pods<double>();
   std::vector<double> tool_T = r.pods<double>();
-  if (tool_T.size() != tool_T_.size()) throw NumericalError("sph checkpoint: tool particle count differs from the setup");
-  tool_T_ = std::move(tool_T);
+  if (tool_T.size() != tool_body_.T.size()) throw NumericalError("sph checkpoint: tool particle count differs from the setup");
+  tool_body_.T = std::move(tool_T);
   surface_.surface = r.pods<char>();
   surface_.lambda = r.pods<double>();
   surface_.normal = r.pods<Vec2>();

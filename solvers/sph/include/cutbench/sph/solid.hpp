@@ -22,6 +22,7 @@
 #include "cutbench/sph/heat.hpp"
 #include "cutbench/sph/johnson_cook.hpp"
 #include "cutbench/sph/tool.hpp"
+#include "cutbench/sph/tool_heat.hpp"
 #include "cutbench/sph/neighbours.hpp"
 
 namespace cutbench::sph {
@@ -117,8 +118,8 @@ public:
   // surface detection; they exchange heat through cross_body_conduction(); surface particles in
   // contact (a particle of the other body within 1.5 dx) lose no heat to the air.
   void set_tool_thermal(HeatMaterial tool_heat, double depth);
-  const std::vector<Vec2>& tool_particles() const { return tool_x_; }  // tool frame
-  const std::vector<double>& tool_temperature() const { return tool_T_; }
+  const std::vector<Vec2>& tool_particles() const { return tool_body_.x; }  // tool frame
+  const std::vector<double>& tool_temperature() const { return tool_body_.T; }
 
   // Checkpoints: the dynamic state (positions, velocities, accelerations, densities, stresses,
   // plastic strains and their last increments, temperatures of workpiece and tool, contact and
@@ -226,13 +227,7 @@ private:
   std::shared_ptr<const ToolGeometry> tool_;
   Vec2 tool_pos_ = Vec2::Zero(), tool_vel_ = Vec2::Zero(), tool_force_ = Vec2::Zero();
   ContactOptions contact_;
-  bool tool_thermal_ = false;
-  HeatMaterial tool_heat_;
-  std::vector<Vec2> tool_x_;
-  std::vector<double> tool_V_, tool_T_;
-  std::vector<char> tool_fixed_, tool_use_fmfs_, tool_loss_;
-  NeighbourList tool_nl_;
-  FmfsLaplacian tool_fmfs_;
+  ToolHeatBody tool_body_;  // tool conduction (set_tool_thermal)
 
   void apply_contact(double dt);
   void penalty_contact(double dt);  // adds to a_ at the current positions (tool at time_ + dt)

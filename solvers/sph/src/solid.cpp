@@ -54,11 +54,11 @@ void SolidSph::enable_thermal(ThermalOptions options, std::vector<char> fixed_te
 }
 
 void SolidSph::set_tool_thermal(HeatMaterial tool_heat, double depth) {
-  if (!tool_ || !thermal_) throw InputError("tool", "set_tool and enable_thermal must come first");
+  if (!contact_.active() || !thermal_) throw InputError("tool", "set_tool and enable_thermal must come first");
   if (!(depth > 6.0 * dx_)) throw InputError("depth", "tool band must be deeper than 6 particle spacings");
-  tool_body_.build(*tool_, tool_heat, depth, dx_, kernel_, th_.surface, th_.brookshaw_band, th_.boundary.T_ambient);
-  if (contact_.tool_heat_share >= 0.0) {
-    tool_share_ = contact_.tool_heat_share;
+  tool_body_.build(contact_.geometry(), tool_heat, depth, dx_, kernel_, th_.surface, th_.brookshaw_band, th_.boundary.T_ambient);
+  if (contact_.options().tool_heat_share >= 0.0) {
+    tool_share_ = contact_.options().tool_heat_share;
   } else {  // effusivity partition
     const HeatMaterial& tool = tool_body_.heat;
     const double e_tool = std::sqrt(tool.conductivity * tool.density * tool.specific_heat);
@@ -81,7 +81,7 @@ void SolidSph::deposit_friction_heat(std::size_t i, double heat) {
 }
 
 double SolidSph::shear_cap(std::size_t i) const {
-  if (!contact_.shear_cap || !mat_.plastic) return std::numeric_limits<double>::infinity();
+  if (!contact_.options().shear_cap || !mat_.plastic) return std::numeric_limits<double>::infinity();
   // shear flow stress at the particle's state (reference rate: the cap is a stress bound) times
   // the face length dx it covers (per unit depth)
   return mat_.jc.flow_stress(eps_p_[i], 0.0, T_[i]) / std::sqrt(3.0) * dx_;
@@ -151,7 +151,7 @@ void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) 
   ToolHeatBody& tb = tool_body_;
   std::vector<char> tool_loss = tb.loss;
   if (tb.active) {
-    tool_world = tb.world(tool_pos_);
+    tool_world = tb.world(contact_.position);
     cross = build_cross_neighbours(x_, tool_world, kernel_.support());
     const double c2 = 2.25 * dx_ * dx_;
     for (std::size_t i = 0; i < n; ++i)
@@ -286,9 +286,9 @@ void SolidSph::save_state(BinaryWriter& w) const {
   w.pods(S_);
   w.pods(last_dep_);
   w.pods(x_listed_);
-  w.pods(contact_p_);
-  w.pods(contact_gap_);
-  w.pods(friction_history_);
+  w.pods(contact_.screen_p);
+  w.pods(contact_.screen_gap);
+  w.pods(contact_.friction_history);
   w.pods(pending_tool_heat_);
   w.pods(plastic_heat_at_);
   w.pods(tool_body_.T);
@@ -299,8 +299,8 @@ void SolidSph::save_state(BinaryWriter& w) const {
   w.u64(steps_);
   w.u64(static_cast<std::uint64_t>(th_steps_));
   for (double d : {time_, plastic_heat_, heat_lost_, friction_heat_, th_dt_acc_, heat_sunk_, friction_heat_tool_,
-                   tool_share_, last_dt_, tool_pos_.x(), tool_pos_.y(), tool_vel_.x(), tool_vel_.y(),
-                   tool_force_.x(), tool_force_.y()})
+                   tool_share_, last_dt_, contact_.position.x(), contact_.position.y(), contact_.velocity.x(),
+                   contact_.velocity.y(), contact_.force.x(), contact_.force.y()})
     w.f64(d);
 }
 
@@ -321,9 +321,9 @@ void SolidSph::load_state(BinaryReader& r) {
   S_ = per_particle(r.pods<Stress3>());
   last_dep_ = r.pods<double>();
   const std::vector<Vec2> listed = per_particle(r.pods<Vec2>());
-  contact_p_ = r.pods<Vec2>();
-  contact_gap_ = r.pods<double>();
-  friction_history_ = r.pods<Vec2>();
+  contact_.screen_p = r.pods<Vec2>();
+  contact_.screen_gap = r.pods<double>();
+  contact_.friction_history = r.pods<Vec2>();
   pending_tool_heat_ = r.pods<double>();
   plastic_heat_at_ = r.pods<double>();
   std::vector<double> tool_T = r.pods<double>();
@@ -344,12 +344,12 @@ void SolidSph::load_state(BinaryReader& r) {
   friction_heat_tool_ = r.f64();
   tool_share_ = r.f64();
   last_dt_ = r.f64();
-  tool_pos_.x() = r.f64();
-  tool_pos_.y() = r.f64();
-  tool_vel_.x() = r.f64();
-  tool_vel_.y() = r.f64();
-  tool_force_.x() = r.f64();
-  tool_force_.y() = r.f64();
+  contact_.position.x() = r.f64();
+  contact_.position.y() = r.f64();
+  contact_.velocity.x() = r.f64();
+  contact_.velocity.y() = r.f64();
+  contact_.force.x() = r.f64();
+  contact_.force.y() = r.f64();
   // The neighbour lists as they were (built at x_listed_), then the pair geometry and packed
   // particle data of the current positions, which the next step's rate pass reuses; the
   // accelerations themselves (with the contact forces of the last step) are the stored ones.
@@ -723,119 +723,22 @@ void SolidSph::step(double dt) {
   }
   if (!finite) throw NumericalError("sph solid: non-finite particle position");
   accelerations();
-  if (tool_ && contact_.model == ContactModel::penalty) penalty_contact(dt);
+  const auto cap = [this](std::size_t i) { return shear_cap(i); };
+  const auto heat = [this](std::size_t i, double q) { deposit_friction_heat(i, q); };
+  const bool penalty = contact_.active() && contact_.options().model == ContactModel::penalty;
+  if (penalty) contact_.penalty(dt, dx_, x_, v_, m_, fixed_, a_, cap, heat);
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
   time_ += dt;
-  if (tool_ && contact_.model == ContactModel::velocity) apply_contact(dt);
-  if (tool_ && contact_.model == ContactModel::penalty) tool_pos_ += dt * tool_vel_;
+  if (contact_.active() && contact_.options().model == ContactModel::velocity)
+    contact_.velocity_level(dt, dx_, x_, v_, m_, fixed_, cap, heat);
+  if (penalty) contact_.advance(dt);
   ++steps_;
 }
 
 void SolidSph::set_tool(std::shared_ptr<const ToolGeometry> tool, const Vec2& position, const Vec2& velocity,
                         ContactOptions contact) {
-  if (!tool) throw InputError("tool", "null tool geometry");
-  if (!(contact.friction >= 0.0) || !(contact.kappa > 0.0 && contact.kappa <= 1.0) ||
-      !(contact.alpha > 0.0 && contact.alpha <= 1.0))
-    throw InputError("contact", "mu >= 0, 0 < kappa <= 1 and 0 < alpha <= 1 required");
-  tool_ = std::move(tool);
-  tool_pos_ = position;
-  tool_vel_ = velocity;
-  contact_ = contact;
-}
-
-void SolidSph::apply_contact(double dt) {
-  tool_pos_ += dt * tool_vel_;
-  const double offset = contact_.offset_fraction * dx_;
-  Vec2 force = Vec2::Zero();
-  contacts_.clear();
-  for (std::size_t i = 0; i < x_.size(); ++i) {
-    if (fixed_[i]) continue;
-    const SignedDistance sd = tool_->at(x_[i] - tool_pos_);
-    const double g = sd.distance - offset;
-    if (g >= 0.0) continue;
-    const Vec2 vrel = v_[i] - tool_vel_;
-    const double vn = vrel.dot(sd.normal);
-    const double target = std::max(vn, -contact_.kappa * g / dt);
-    const double jn = m_[i] * (target - vn);
-    if (jn <= 0.0) continue;
-    const Vec2 vt = vrel - vn * sd.normal;
-    Vec2 jt = -m_[i] * vt;
-    const double limit = std::min(contact_.friction * jn, shear_cap(i) * dt);
-    if (jt.norm() > limit) jt *= limit / jt.norm();
-    const Vec2 impulse = jn * sd.normal + jt;
-    v_[i] += impulse / m_[i];
-    force -= impulse / dt;
-    contacts_.push_back({i, sd.normal, (jn / dt) * sd.normal, jt / dt, limit / dt});
-    const Vec2 vrel_after = v_[i] - tool_vel_;
-    const double slip = (vrel_after - vrel_after.dot(sd.normal) * sd.normal).norm();
-    const double heat = contact_.heat_fraction * jt.norm() * slip;  // J/m over this step
-    deposit_friction_heat(i, heat);
-  }
-  tool_force_ = force;
-}
-
-void SolidSph::penalty_contact(double dt) {
-  // positions are x^{n+1}; the tool is at its position of time_ + dt
-  const Vec2 tool_pos = tool_pos_ + dt * tool_vel_;
-  const double offset = contact_.offset_fraction * dx_;
-  if (friction_history_.size() != x_.size()) friction_history_.assign(x_.size(), Vec2::Zero());
-  Vec2 force = Vec2::Zero();
-  contacts_.clear();
-  if (contact_gap_.size() != x_.size()) {
-    contact_gap_.assign(x_.size(), 0.0);
-    contact_p_.assign(x_.size(), Vec2::Zero());
-  }
-  // Screening and the tool's signed distance per particle in parallel (pure), then the contacts
-  // in index order on one thread (forces, friction heat and the contact list in the same order as
-  // a serial loop).
-  const std::size_t n = x_.size();
-  contact_sd_.resize(n);
-  contact_eval_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
-  for (std::size_t i = 0; i < n; ++i) {
-    contact_eval_[i] = 0;
-    if (fixed_[i]) continue;
-    const Vec2 p = x_[i] - tool_pos;
-    // screening: the signed distance is 1-Lipschitz, so g(p) >= gap_last - |p - p_last| > 0
-    // (friction history already zero from that evaluation); margin against round-off
-    const double gl = contact_gap_[i];
-    if (gl > 0.0 && (p - contact_p_[i]).squaredNorm() < 0.81 * gl * gl) continue;
-    contact_sd_[i] = tool_->at(p);
-    contact_eval_[i] = 1;
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!contact_eval_[i]) continue;
-    const Vec2 p = x_[i] - tool_pos;
-    const SignedDistance& sd = contact_sd_[i];
-    const double g = sd.distance - offset;
-    contact_p_[i] = p;
-    contact_gap_[i] = g;
-    if (g >= 0.0) {
-      friction_history_[i] = Vec2::Zero();
-      continue;
-    }
-    const Vec2 fn = (-contact_.alpha * m_[i] * g / (dt * dt)) * sd.normal;
-    const Vec2 vrel = v_[i] - tool_vel_;
-    const Vec2 vt = vrel - vrel.dot(sd.normal) * sd.normal;
-    Vec2 ft = friction_history_[i] - (contact_.alpha * m_[i] / dt) * vt;
-    const double fy = std::min(contact_.friction * fn.norm(), shear_cap(i));
-    // Only the plastic (slip) part of the tangential motion dissipates: slip = (|f*| - f_y) / k_t
-    // with the tangential stiffness k_t = alpha m / dt^2; the elastic stick part is stored.
-    double heat = 0.0;
-    const double ftrial = ft.norm();
-    if (ftrial > fy) {
-      const double kt = contact_.alpha * m_[i] / (dt * dt);
-      heat = contact_.heat_fraction * fy * (ftrial - fy) / kt;  // J/m over this step
-      ft *= fy / ftrial;
-    }
-    friction_history_[i] = ft;
-    a_[i] += (fn + ft) / m_[i];
-    force -= fn + ft;
-    contacts_.push_back({i, sd.normal, fn, ft, fy});
-    deposit_friction_heat(i, heat);
-  }
-  tool_force_ = force;
+  contact_.set(std::move(tool), position, velocity, contact);
 }
 
 double SolidSph::yield_floor(double T) const {

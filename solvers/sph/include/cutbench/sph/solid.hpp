@@ -22,6 +22,7 @@
 #include "cutbench/sph/heat.hpp"
 #include "cutbench/sph/johnson_cook.hpp"
 #include "cutbench/sph/tool.hpp"
+#include "cutbench/sph/tool_contact.hpp"
 #include "cutbench/sph/tool_heat.hpp"
 #include "cutbench/sph/neighbours.hpp"
 
@@ -95,18 +96,13 @@ public:
   // Rigid tool translating at constant velocity; contact applied at the end of every step.
   void set_tool(std::shared_ptr<const ToolGeometry> tool, const Vec2& position, const Vec2& velocity,
                 ContactOptions contact);
-  const Vec2& tool_position() const { return tool_pos_; }
-  const Vec2& tool_force() const { return tool_force_; }  // on the tool, N per metre of depth, last step
+  const Vec2& tool_position() const { return contact_.position; }
+  const Vec2& tool_force() const { return contact_.force; }  // on the tool, N per metre of depth, last step
   // Contacts of the last step (diagnostics: force split by tool face, friction use). Forces act on
   // the particle (N/m); `limit` is the Coulomb bound mu |f_n| in force (the velocity model's
   // impulses are divided by dt).
-  struct ContactRecord {
-    std::size_t particle = 0;
-    Vec2 normal = Vec2::Zero();  // out of the tool
-    Vec2 fn = Vec2::Zero(), ft = Vec2::Zero();
-    double limit = 0.0;
-  };
-  const std::vector<ContactRecord>& contacts() const { return contacts_; }
+  using ContactRecord = sph::ContactRecord;
+  const std::vector<ContactRecord>& contacts() const { return contact_.contacts(); }
   double friction_heat() const { return friction_heat_; }  // J per metre of depth, accumulated
   // friction heat put into the tool (share beta, see ContactOptions::tool_heat_share), J/m
   double friction_heat_to_tool() const { return friction_heat_tool_; }
@@ -203,10 +199,6 @@ private:
   // tool's signed distance; the distance is 1-Lipschitz, so while |p - p_last| < gap_last the
   // particle cannot touch the tool and the evaluation is skipped (exact)
   PairCache heat_pairs_;  // the pairs inside the support in the conduction update
-  std::vector<Vec2> contact_p_;
-  std::vector<double> contact_gap_;
-  std::vector<SignedDistance> contact_sd_;  // per step: the tool's signed distance where evaluated
-  std::vector<char> contact_eval_;
   std::size_t builds_ = 0;
   double time_ = 0.0;
   std::size_t steps_ = 0;
@@ -224,15 +216,9 @@ private:
   void deposit_friction_heat(std::size_t i, double heat);
   double shear_cap(std::size_t i) const;  // Zorev cap of |f_t| for particle i (N/m), infinity when off
   int th_steps_ = 0;
-  std::shared_ptr<const ToolGeometry> tool_;
-  Vec2 tool_pos_ = Vec2::Zero(), tool_vel_ = Vec2::Zero(), tool_force_ = Vec2::Zero();
-  ContactOptions contact_;
+  ToolContact contact_;  // tool contact (set_tool)
   ToolHeatBody tool_body_;  // tool conduction (set_tool_thermal)
 
-  void apply_contact(double dt);
-  void penalty_contact(double dt);  // adds to a_ at the current positions (tool at time_ + dt)
-  std::vector<Vec2> friction_history_;
-  std::vector<ContactRecord> contacts_;  // reused every step (capacity kept)
   double last_dt_ = 0.0;
 
   void thermal_update(double dt, const std::vector<double>& plastic_dT);

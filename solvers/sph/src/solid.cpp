@@ -48,36 +48,28 @@ void SolidSph::enable_thermal(ThermalOptions options, std::vector<char> fixed_te
   if (!(options.heat.conductivity > 0.0) || !(options.heat.density > 0.0) || !(options.heat.specific_heat > 0.0))
     throw InputError("thermal", "k, rho and c_p must be positive");
   if (options.conduction_interval < 1) throw InputError("conduction_interval", "must be >= 1");
-  th_ = options;
-  t_fixed_ = std::move(fixed_temperature);
-  thermal_ = true;
+  heat_.options = options;
+  heat_.fixed = std::move(fixed_temperature);
+  heat_.active = true;
 }
 
 void SolidSph::set_tool_thermal(HeatMaterial tool_heat, double depth) {
-  if (!contact_.active() || !thermal_) throw InputError("tool", "set_tool and enable_thermal must come first");
+  if (!contact_.active() || !heat_.active) throw InputError("tool", "set_tool and enable_thermal must come first");
   if (!(depth > 6.0 * dx_)) throw InputError("depth", "tool band must be deeper than 6 particle spacings");
-  tool_body_.build(contact_.geometry(), tool_heat, depth, dx_, kernel_, th_.surface, th_.brookshaw_band, th_.boundary.T_ambient);
+  tool_body_.build(contact_.geometry(), tool_heat, depth, dx_, kernel_, heat_.options.surface, heat_.options.brookshaw_band, heat_.options.boundary.T_ambient);
   if (contact_.options().tool_heat_share >= 0.0) {
-    tool_share_ = contact_.options().tool_heat_share;
+    heat_.tool_share = contact_.options().tool_heat_share;
   } else {  // effusivity partition
     const HeatMaterial& tool = tool_body_.heat;
     const double e_tool = std::sqrt(tool.conductivity * tool.density * tool.specific_heat);
-    const double e_work = std::sqrt(th_.heat.conductivity * th_.heat.density * th_.heat.specific_heat);
-    tool_share_ = e_tool / (e_tool + e_work);
+    const double e_work = std::sqrt(heat_.options.heat.conductivity * heat_.options.heat.density * heat_.options.heat.specific_heat);
+    heat_.tool_share = e_tool / (e_tool + e_work);
   }
-  pending_tool_heat_.assign(x_.size(), 0.0);
+  heat_.pending_tool.assign(x_.size(), 0.0);
 }
 
 void SolidSph::deposit_friction_heat(std::size_t i, double heat) {
-  friction_heat_ += heat;
-  if (!thermal_ || t_fixed_[i]) return;
-  double to_tool = 0.0;
-  if (tool_body_.active && tool_share_ > 0.0) {
-    to_tool = tool_share_ * heat;
-    pending_tool_heat_[i] += to_tool;
-  }
-  // in the audit metric rho0 c V_i T_i this adds exactly heat - to_tool
-  T_[i] += (heat - to_tool) * rho_[i] / (th_.heat.density * th_.heat.specific_heat * m_[i]);
+  heat_.deposit_friction(i, heat, rho_[i], m_[i], T_[i], tool_body_.active);
 }
 
 double SolidSph::shear_cap(std::size_t i) const {
@@ -88,129 +80,13 @@ double SolidSph::shear_cap(std::size_t i) const {
 }
 
 double SolidSph::tool_heat_content() const {
-  double e = tool_body_.heat_content(th_.boundary.T_ambient);
-  for (double q : pending_tool_heat_) e += q;  // friction heat not yet deposited on tool particles
+  double e = tool_body_.heat_content(heat_.options.boundary.T_ambient);
+  for (double q : heat_.pending_tool) e += q;  // friction heat not yet deposited on tool particles
   return e;
 }
 
-double SolidSph::workpiece_heat_content() const {
-  if (!thermal_) return 0.0;
-  double e = 0.0;
-  const double rc = th_.heat.density * th_.heat.specific_heat;
-  for (std::size_t i = 0; i < x_.size(); ++i)
-    if (!t_fixed_[i]) e += rc * m_[i] / rho_[i] * (T_[i] - th_.boundary.T_ambient);
-  return e;
-}
+double SolidSph::workpiece_heat_content() const { return heat_.content(m_, rho_, T_); }
 
-void SolidSph::thermal_update(double dt, const std::vector<double>& plastic_dT) {
-  // Called with nl_, x_ and rho_ of the start of the step.
-  const std::size_t n = x_.size();
-  const double rc = th_.heat.density * th_.heat.specific_heat;
-  if (plastic_heat_at_.size() != n) plastic_heat_at_.assign(n, 0.0);
-  // plastic heat of this step: per particle in parallel, the total summed in index order (as a
-  // serial loop over every particle would: the elastic ones add exact zeros)
-  plastic_dT_q_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (t_fixed_[i] || plastic_dT[i] == 0.0) {
-      plastic_dT_q_[i] = 0.0;
-      continue;
-    }
-    T_[i] += plastic_dT[i];
-    const double q = plastic_dT[i] * rc * (m_[i] / rho_[i]);
-    plastic_dT_q_[i] = q;
-    plastic_heat_at_[i] += q;
-  }
-  for (std::size_t i = 0; i < n; ++i)
-    if (plastic_dT_q_[i] != 0.0) plastic_heat_ += plastic_dT_q_[i];
-  th_dt_acc_ += dt;
-  ++th_steps_;
-  const double alpha_max = tool_body_.active ? std::max(th_.heat.diffusivity(), tool_body_.heat.diffusivity())
-                                             : th_.heat.diffusivity();
-  const double dt_limit = 0.1 * kernel_.h() * kernel_.h() / alpha_max;
-  if (th_steps_ < th_.conduction_interval && th_dt_acc_ + dt < dt_limit) return;
-  const int sub = std::max(1, static_cast<int>(std::ceil(th_dt_acc_ / dt_limit)));
-  const double dt_th = th_dt_acc_ / sub;
-  th_dt_acc_ = 0.0;
-  th_steps_ = 0;
-  std::vector<double> vol(n);
-  for (std::size_t i = 0; i < n; ++i) vol[i] = m_[i] / rho_[i];
-  fill_pair_cache(ParticleView{x_, vol, nl_, kernel_}, heat_pairs_);
-  const ParticleView view{x_, vol, nl_, kernel_, &heat_pairs_};
-  surface_ = detect_free_surface(view, th_.surface);
-  std::vector<char> use_fmfs, loss;
-  heat_masks(nl_, surface_, t_fixed_, th_.brookshaw_band, th_.surface.lambda_interior, use_fmfs, loss);
-  const FmfsLaplacian* fm = nullptr;
-  if (th_.scheme == HeatScheme::fmfs) {
-    fmfs_.update(view, &use_fmfs);  // FMFS geometry only where FMFS is used
-    fm = &fmfs_;
-  }
-  std::vector<double> rate, tool_rate;
-  std::vector<Vec2> tool_world;
-  NeighbourList cross;
-  ToolHeatBody& tb = tool_body_;
-  std::vector<char> tool_loss = tb.loss;
-  if (tb.active) {
-    tool_world = tb.world(contact_.position);
-    cross = build_cross_neighbours(x_, tool_world, kernel_.support());
-    const double c2 = 2.25 * dx_ * dx_;
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t k = cross.begin(i); k < cross.end(i); ++k)
-        if ((x_[i] - tool_world[cross.index[k]]).squaredNorm() < c2) {
-          loss[i] = 0;
-          tool_loss[cross.index[k]] = 0;
-        }
-    // friction heat share of the tool: onto the (non-sink) tool particles in the support of the
-    // heated workpiece particle, kernel-weighted; back to the workpiece particle if there are none
-    for (std::size_t i = 0; i < n; ++i) {
-      const double q = pending_tool_heat_[i];
-      if (q == 0.0) continue;
-      pending_tool_heat_[i] = 0.0;
-      if (tb.receive(i, x_[i], q, cross, tool_world, kernel_)) {
-        friction_heat_tool_ += q;
-      } else {
-        T_[i] += q / (rc * vol[i]);
-      }
-    }
-  }
-  const ParticleView tool_view{tb.x, tb.V, tb.nl, kernel_};
-  for (int k = 0; k < sub; ++k) {
-    double sunk = 0.0, tool_sunk = 0.0;
-    const double lost = heat_rates(view, T_, fm, use_fmfs, t_fixed_, loss, th_.heat, th_.boundary, rate, nullptr, &sunk);
-    heat_lost_ += dt_th * lost;
-    heat_sunk_ += dt_th * sunk;
-    if (tb.active) {
-      const double tool_lost =
-          heat_rates(tool_view, tb.T, th_.scheme == HeatScheme::fmfs ? &tb.fmfs : nullptr, tb.use_fmfs, tb.fixed,
-                     tool_loss, tb.heat, th_.boundary, tool_rate, nullptr, &tool_sunk);
-      heat_lost_ += dt_th * tool_lost;
-      heat_sunk_ += dt_th * tool_sunk;
-      cross_body_conduction(x_, vol, T_, th_.heat, tool_world, tb.V, tb.T, tb.heat, cross, kernel_, rate, tool_rate);
-      // cross-body heat into fixed particles (their rates were zeroed before the cross term)
-      const double rcw = th_.heat.density * th_.heat.specific_heat;
-      const double rct = tb.heat.density * tb.heat.specific_heat;
-      for (std::size_t i = 0; i < n; ++i)
-        if (t_fixed_[i]) heat_sunk_ += dt_th * rate[i] * rcw * vol[i];
-      for (std::size_t i = 0; i < tb.T.size(); ++i)
-        if (tb.fixed[i]) heat_sunk_ += dt_th * tool_rate[i] * rct * tb.V[i];
-      for (std::size_t i = 0; i < tb.T.size(); ++i)
-        if (!tb.fixed[i]) tb.T[i] += dt_th * tool_rate[i];
-    }
-    for (std::size_t i = 0; i < n; ++i)
-      if (!t_fixed_[i]) T_[i] += dt_th * rate[i];
-  }
-  // A non-finite temperature would silently switch off J-C yielding (NaN flow stress) and the run
-  // would go on with garbage: stop it here with the place and time.
-  for (std::size_t i = 0; i < n; ++i)
-    if (!std::isfinite(T_[i]))
-      throw NumericalError("sph: non-finite temperature at workpiece particle " + std::to_string(i) + " (x " +
-                           std::to_string(x_[i].x()) + " m, y " + std::to_string(x_[i].y()) + " m) at t = " +
-                           std::to_string(time_) + " s, step " + std::to_string(steps_));
-  for (std::size_t i = 0; i < tb.T.size(); ++i)
-    if (!std::isfinite(tb.T[i]))
-      throw NumericalError("sph: non-finite temperature at tool particle " + std::to_string(i) + " at t = " +
-                           std::to_string(time_) + " s, step " + std::to_string(steps_));
-}
 
 std::vector<double> SolidSph::pressure() const {
   std::vector<double> p(x_.size());
@@ -232,7 +108,7 @@ double SolidSph::stable_time_step() const {
     throw NumericalError("sph: non-finite particle velocity at t = " + std::to_string(time_) + " s, step " +
                          std::to_string(steps_));
   double dt = opt_.cfl * kernel_.h() / (mat_.p_wave_speed() + vmax);
-  if (thermal_) dt = std::min(dt, 0.1 * kernel_.h() * kernel_.h() / th_.heat.diffusivity());
+  if (heat_.active) dt = std::min(dt, 0.1 * kernel_.h() * kernel_.h() / heat_.options.heat.diffusivity());
   return dt;
 }
 
@@ -289,17 +165,17 @@ void SolidSph::save_state(BinaryWriter& w) const {
   w.pods(contact_.screen_p);
   w.pods(contact_.screen_gap);
   w.pods(contact_.friction_history);
-  w.pods(pending_tool_heat_);
-  w.pods(plastic_heat_at_);
+  w.pods(heat_.pending_tool);
+  w.pods(heat_.plastic_at);
   w.pods(tool_body_.T);
-  w.pods(surface_.surface);
-  w.pods(surface_.lambda);
-  w.pods(surface_.normal);
+  w.pods(heat_.surface.surface);
+  w.pods(heat_.surface.lambda);
+  w.pods(heat_.surface.normal);
   w.u64(builds_);
   w.u64(steps_);
-  w.u64(static_cast<std::uint64_t>(th_steps_));
-  for (double d : {time_, plastic_heat_, heat_lost_, friction_heat_, th_dt_acc_, heat_sunk_, friction_heat_tool_,
-                   tool_share_, last_dt_, contact_.position.x(), contact_.position.y(), contact_.velocity.x(),
+  w.u64(static_cast<std::uint64_t>(heat_.steps));
+  for (double d : {time_, heat_.plastic_heat, heat_.heat_lost, heat_.friction_heat, heat_.dt_acc, heat_.heat_sunk, heat_.friction_heat_tool,
+                   heat_.tool_share, last_dt_, contact_.position.x(), contact_.position.y(), contact_.velocity.x(),
                    contact_.velocity.y(), contact_.force.x(), contact_.force.y()})
     w.f64(d);
 }
@@ -324,25 +200,25 @@ void SolidSph::load_state(BinaryReader& r) {
   contact_.screen_p = r.pods<Vec2>();
   contact_.screen_gap = r.pods<double>();
   contact_.friction_history = r.pods<Vec2>();
-  pending_tool_heat_ = r.pods<double>();
-  plastic_heat_at_ = r.pods<double>();
+  heat_.pending_tool = r.pods<double>();
+  heat_.plastic_at = r.pods<double>();
   std::vector<double> tool_T = r.pods<double>();
   if (tool_T.size() != tool_body_.T.size()) throw NumericalError("sph checkpoint: tool particle count differs from the setup");
   tool_body_.T = std::move(tool_T);
-  surface_.surface = r.pods<char>();
-  surface_.lambda = r.pods<double>();
-  surface_.normal = r.pods<Vec2>();
+  heat_.surface.surface = r.pods<char>();
+  heat_.surface.lambda = r.pods<double>();
+  heat_.surface.normal = r.pods<Vec2>();
   const auto builds = static_cast<std::size_t>(r.u64());
   steps_ = static_cast<std::size_t>(r.u64());
-  th_steps_ = static_cast<int>(r.u64());
+  heat_.steps = static_cast<int>(r.u64());
   time_ = r.f64();
-  plastic_heat_ = r.f64();
-  heat_lost_ = r.f64();
-  friction_heat_ = r.f64();
-  th_dt_acc_ = r.f64();
-  heat_sunk_ = r.f64();
-  friction_heat_tool_ = r.f64();
-  tool_share_ = r.f64();
+  heat_.plastic_heat = r.f64();
+  heat_.heat_lost = r.f64();
+  heat_.friction_heat = r.f64();
+  heat_.dt_acc = r.f64();
+  heat_.heat_sunk = r.f64();
+  heat_.friction_heat_tool = r.f64();
+  heat_.tool_share = r.f64();
   last_dt_ = r.f64();
   contact_.position.x() = r.f64();
   contact_.position.y() = r.f64();
@@ -563,7 +439,7 @@ void SolidSph::step(double dt) {
   auto& s_new = s_new_;
   auto& plastic_dT = plastic_dT_;
   const double chi_rc =
-      thermal_ ? th_.taylor_quinney / (th_.heat.density * th_.heat.specific_heat) : 0.0;
+      heat_.active ? heat_.options.taylor_quinney / (heat_.options.heat.density * heat_.options.heat.specific_heat) : 0.0;
   const bool corr = opt_.correct_velocity_gradient;
   // Pair pass over the half list (symmetric): with dv = v_j - v_i and gradW_ji = -gradW_ij,
   //   (grad v)_i += V_j dv (x) gradW_ij,  (grad v)_j += V_i dv (x) gradW_ij,
@@ -711,7 +587,8 @@ void SolidSph::step(double dt) {
     }
     s_new[i] = s;
   }
-  if (thermal_) thermal_update(dt, plastic_dT);
+  if (heat_.active)
+    heat_.update(dt, plastic_dT, x_, m_, rho_, T_, nl_, kernel_, dx_, tool_body_, contact_.position, time_, steps_);
   rho_.swap(rho_new);
   S_.swap(s_new);
   // drift

@@ -24,6 +24,7 @@
 #include "cutbench/sph/tool.hpp"
 #include "cutbench/sph/tool_contact.hpp"
 #include "cutbench/sph/tool_heat.hpp"
+#include "cutbench/sph/workpiece_heat.hpp"
 #include "cutbench/sph/neighbours.hpp"
 
 namespace cutbench::sph {
@@ -53,22 +54,6 @@ struct SolidOptions {
   double neighbour_skin = 0.3;
 };
 
-// Heat equation on the moving particles (Eq. 4): conduction with V_j = m_j / rho_j, surface
-// detection and FMFS geometry recomputed every step, plastic heating chi sigma_y d(eps_p) / (rho c_p)
-// per step (Eq. 5), convection and radiation on the detected surface, fixed-temperature particles.
-struct ThermalOptions {
-  HeatMaterial heat{7.3, 4430.0, 580.0};  // Ti6Al4V, paper Table 1
-  HeatBoundary boundary{50.0, 0.3, 300.0};
-  HeatScheme scheme = HeatScheme::fmfs;
-  bool brookshaw_band = false;
-  SurfaceOptions surface;
-  double taylor_quinney = 0.9;  // chi
-  // Conduction, surface detection and FMFS geometry are updated every `conduction_interval`
-  // mechanical steps with the accumulated step (the thermal limit 0.1 h^2/alpha is ~1e4 times the
-  // mechanical CFL step in cutting); plastic and friction heat are added every step.
-  int conduction_interval = 10;
-};
-
 class SolidSph {
 public:
   // dx: initial particle spacing (volume dx^2, mass rho0 dx^2 unless set_masses), h = h_over_dx dx.
@@ -91,7 +76,7 @@ public:
   void set_fixed(std::vector<char> fixed);
   // Switch on the heat equation; particles with fixed_temperature[i] keep their temperature.
   void enable_thermal(ThermalOptions options, std::vector<char> fixed_temperature);
-  const SurfaceDetection& surface() const { return surface_; }
+  const SurfaceDetection& surface() const { return heat_.surface; }
 
   // Rigid tool translating at constant velocity; contact applied at the end of every step.
   void set_tool(std::shared_ptr<const ToolGeometry> tool, const Vec2& position, const Vec2& velocity,
@@ -103,10 +88,10 @@ public:
   // impulses are divided by dt).
   using ContactRecord = sph::ContactRecord;
   const std::vector<ContactRecord>& contacts() const { return contact_.contacts(); }
-  double friction_heat() const { return friction_heat_; }  // J per metre of depth, accumulated
+  double friction_heat() const { return heat_.friction_heat; }  // J per metre of depth, accumulated
   // friction heat put into the tool (share beta, see ContactOptions::tool_heat_share), J/m
-  double friction_heat_to_tool() const { return friction_heat_tool_; }
-  double tool_heat_share() const { return tool_share_; }  // beta in use (0 without tool conduction)
+  double friction_heat_to_tool() const { return heat_.friction_heat_tool; }
+  double tool_heat_share() const { return heat_.tool_share; }  // beta in use (0 without tool conduction)
 
   // Discretise the tool for heat conduction (requires set_tool and enable_thermal): particles of
   // spacing dx inside the tool within `depth` of its lowest edge point; those beyond depth - 3 dx
@@ -128,12 +113,12 @@ public:
   // sum rho0 c V_i (T_i - T_ambient) over the free (not fixed-temperature) workpiece particles, J/m
   double workpiece_heat_content() const;
   // heat conducted into the fixed-temperature particles (workpiece and tool sinks), J/m
-  double heat_sunk() const { return heat_sunk_; }
-  double plastic_heat() const { return plastic_heat_; }  // J per metre of depth, accumulated
+  double heat_sunk() const { return heat_.heat_sunk; }
+  double plastic_heat() const { return heat_.plastic_heat; }  // J per metre of depth, accumulated
   // plastic heat put into each workpiece particle so far, J per metre of depth (empty before the
   // first thermal step); sums to plastic_heat()
-  const std::vector<double>& plastic_heat_by_particle() const { return plastic_heat_at_; }
-  double boundary_heat_loss() const { return heat_lost_; }
+  const std::vector<double>& plastic_heat_by_particle() const { return heat_.plastic_at; }
+  double boundary_heat_loss() const { return heat_.heat_lost; }
 
   double stable_time_step() const;
   void step(double dt);
@@ -190,39 +175,24 @@ private:
   std::vector<Vec2> acc_, xsph_;
   std::vector<RateAcc> racc_;
   std::vector<Mat2> lren_;
-  std::vector<double> rho_new_, plastic_dT_, plastic_dT_q_;
+  std::vector<double> rho_new_, plastic_dT_;
   std::vector<double> last_dep_;  // plastic strain increment of each particle's last plastic step
   std::vector<std::vector<Vec2>> acc_part_;
   std::vector<std::vector<RateAcc>> racc_part_;
   std::vector<std::vector<Mat2>> lren_part_;
-  // contact screening: relative position (particle - tool) and gap at the last evaluation of the
-  // tool's signed distance; the distance is 1-Lipschitz, so while |p - p_last| < gap_last the
-  // particle cannot touch the tool and the evaluation is skipped (exact)
-  PairCache heat_pairs_;  // the pairs inside the support in the conduction update
   std::size_t builds_ = 0;
   double time_ = 0.0;
   std::size_t steps_ = 0;
   bool have_accel_ = false;
-  bool thermal_ = false;
-  ThermalOptions th_;
-  std::vector<char> t_fixed_;
-  SurfaceDetection surface_;
-  FmfsLaplacian fmfs_;
-  double plastic_heat_ = 0.0, heat_lost_ = 0.0, friction_heat_ = 0.0;
-  std::vector<double> plastic_heat_at_;  // per particle, J/m
-  double th_dt_acc_ = 0.0, heat_sunk_ = 0.0;
-  double friction_heat_tool_ = 0.0, tool_share_ = 0.0;
-  std::vector<double> pending_tool_heat_;  // per workpiece particle, J/m, deposited at the next conduction update
+  double last_dt_ = 0.0;
+  // The components: heat in the workpiece (enable_thermal), the tool contact (set_tool), tool
+  // conduction (set_tool_thermal).
+  WorkpieceHeat heat_;
+  ToolContact contact_;
+  ToolHeatBody tool_body_;
+
   void deposit_friction_heat(std::size_t i, double heat);
   double shear_cap(std::size_t i) const;  // Zorev cap of |f_t| for particle i (N/m), infinity when off
-  int th_steps_ = 0;
-  ToolContact contact_;  // tool contact (set_tool)
-  ToolHeatBody tool_body_;  // tool conduction (set_tool_thermal)
-
-  double last_dt_ = 0.0;
-
-  void thermal_update(double dt, const std::vector<double>& plastic_dT);
-
   void accelerations();
   void update_neighbours();
   void rebuild_neighbours(const std::vector<Vec2>& at);

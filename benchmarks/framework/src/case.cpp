@@ -1,6 +1,4 @@
 #include "cutbench/framework/case.hpp"
-#include "cutbench/framework/methods.hpp"
-#include "cutbench/common/glossary.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -14,10 +12,11 @@
 
 #include "cutbench/common/errors.hpp"
 #include "cutbench/common/solver.hpp"
+#include "cutbench/common/glossary.hpp"
+#include "cutbench/framework/methods.hpp"
 #include "cutbench/framework/reference.hpp"
 
 namespace cutbench::framework {
-
 
 const std::vector<std::string> kCheckKinds = {"verification", "reproduction", "validation", "consistency"};
 

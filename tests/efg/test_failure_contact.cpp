@@ -506,12 +506,12 @@ CuttingResult require_resume_equals_uninterrupted(const CuttingSetup& s, const s
     BOOST_REQUIRE(interruptions < 100000);
   }
   BOOST_TEST_MESSAGE("efg checkpoint test " << name << ": " << ref.steps << " steps, " << interruptions
-                                             << " interruptions, last resume at step " << r.resumed_from_step
+                                             << " interruptions, last resume at step " << r.drive.resumed_from_step
                                              << ", completion at " << ref.travel_complete * 1e6 << " um, "
                                              << ref.eroded << " eroded Gauss points, " << ref.opaque_segments
                                              << " opaque segments");
   BOOST_TEST(interruptions == static_cast<int>((ref.steps - 1) / 256));
-  BOOST_TEST(r.resumed_from_step == 256L * interruptions);
+  BOOST_TEST(r.drive.resumed_from_step == 256u * static_cast<std::size_t>(interruptions));
   BOOST_TEST(r.steps == ref.steps);
   BOOST_TEST(r.t == ref.t, boost::test_tools::per_element());
   BOOST_TEST(r.travel == ref.travel, boost::test_tools::per_element());
@@ -575,7 +575,7 @@ BOOST_AUTO_TEST_CASE(checkpoint_of_another_run_is_ignored) {
   BOOST_REQUIRE(std::filesystem::exists(path));
   cutbench::CheckpointScope scope(cutbench::CheckpointSpec{path, "run B", 1e9, false});
   const CuttingResult r = run_cutting(s);
-  BOOST_TEST(r.resumed_from_step == 0L);
+  BOOST_TEST(r.drive.resumed_from_step == 0u);
   BOOST_TEST(r.steps > 256L);
   std::filesystem::remove(path);
 }

@@ -78,7 +78,7 @@ BOOST_AUTO_TEST_CASE(interrupted_after_every_checkpoint_equals_uninterrupted) {
     }
     BOOST_REQUIRE(interruptions < 100000);
   }
-  last_resume = r.resumed_from_step;
+  last_resume = r.drive.resumed_from_step;
   std::cout << "checkpoint test: " << ref.steps << " steps, " << interruptions << " interruptions, last resume at step "
             << last_resume << ", " << ref.snapshots.size() << " snapshots\n";
   BOOST_TEST(interruptions == static_cast<int>((ref.steps - 1) / 256));
@@ -98,7 +98,7 @@ BOOST_AUTO_TEST_CASE(checkpoint_of_another_run_or_damaged_is_ignored) {
   {  // run "B" does not resume from it
     CheckpointScope scope(CheckpointSpec{path, "run B", 1e9, false});
     const auto r = run_cutting(c);
-    BOOST_TEST(r.resumed_from_step == 0u);
+    BOOST_TEST(r.drive.resumed_from_step == 0u);
   }
   {  // damage one payload byte of run A's file: ignored as well
     std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
@@ -114,7 +114,7 @@ BOOST_AUTO_TEST_CASE(checkpoint_of_another_run_or_damaged_is_ignored) {
   {
     CheckpointScope scope(CheckpointSpec{path, "run A", 1e9, false});
     const auto r = run_cutting(c);
-    BOOST_TEST(r.resumed_from_step == 0u);
+    BOOST_TEST(r.drive.resumed_from_step == 0u);
   }
   std::filesystem::remove(path);
 }
@@ -130,8 +130,8 @@ BOOST_AUTO_TEST_CASE(unwritable_checkpoint_does_not_stop_the_run) {
   std::ofstream(blocker) << "x";
   CheckpointScope scope(CheckpointSpec{blocker + "/run.ckpt", "run C", 0.0, false});
   const auto r = run_cutting(c);
-  BOOST_TEST(r.checkpoints_written == 0);
-  BOOST_TEST(!r.checkpoint_error.empty());
+  BOOST_TEST(r.drive.checkpoints_written == 0);
+  BOOST_TEST(!r.drive.checkpoint_error.empty());
   BOOST_TEST(r.steps > 256u);
   std::filesystem::remove(blocker);
 }

@@ -1,6 +1,8 @@
 #define BOOST_TEST_MODULE common
 #include <boost/test/unit_test.hpp>
 
+#include <limits>
+
 #include "cutbench/common/errors.hpp"
 #include "cutbench/common/model.hpp"
 #include "cutbench/common/units.hpp"
@@ -34,8 +36,8 @@ BOOST_AUTO_TEST_CASE(wrong_unit_names_the_field) {
 BOOST_AUTO_TEST_CASE(validate_ranges_and_unknown_keys) {
   ModelSpec spec;
   spec.name = "toy";
-  auto e = param("E", Dim::stress, "modulus");
-  spec.params.push_back(positive(e));
+  spec.params.push_back(param("E", Dim::stress, "modulus", std::nullopt, 0.0,
+                              std::numeric_limits<double>::infinity(), false));  // E > 0, required
   auto rake = param("rake", Dim::angle, "rake angle");
   rake.min = -1.5707963267948966;
   rake.max = 1.5707963267948966;

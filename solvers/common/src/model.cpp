@@ -27,12 +27,6 @@ ParamSpec param(std::string name, Dim dim, std::string description, std::optiona
   return p;
 }
 
-ParamSpec& positive(ParamSpec& p) {
-  p.min = 0.0;
-  p.min_inclusive = false;
-  return p;
-}
-
 ParamSpec integer_param(std::string name, std::string description, std::optional<double> default_value, double min,
                         double max) {
   ParamSpec p = param(std::move(name), Dim::dimensionless, std::move(description), default_value, min, max);
@@ -106,15 +100,6 @@ double parse_param_value(const ParamSpec& p, const std::string& text, const std:
   }
 }
 
-int whole_number(const Values& v, const std::string& name) {
-  const auto it = v.find(name);
-  if (it == v.end()) throw InputError(name, "missing");
-  const double x = it->second;
-  if (!(std::abs(x - std::round(x)) <= 1e-9 * std::max(1.0, std::abs(x))) || std::abs(x) > 2.0e9)
-    throw InputError(name, "a whole number (got " + std::to_string(x) + ")");
-  return static_cast<int>(std::lround(x));
-}
-
 std::string describe_range(const ParamSpec& p) {
   if (p.kind == ParamKind::option) return "one of " + option_list(p);
   if (p.kind == ParamKind::boolean) return "true or false";
@@ -172,7 +157,8 @@ Values validate_params(const ModelSpec& spec, const Values& given) {
     }
     if (!std::isfinite(v)) throw InputError(p.name, "must be finite");
     if (p.kind != ParamKind::real && v != std::round(v)) {
-      throw InputError(p.name, "a " + std::string(p.kind == ParamKind::integer ? "whole number" : kind_name(p.kind)) +
+      throw InputError(p.name, std::string(p.kind == ParamKind::integer ? "a whole number"
+                                           : p.kind == ParamKind::option ? "an option index" : "a switch") +
                                    " (got " + format_param_value(p, v) + "); expected " + describe_range(p));
     }
     const bool below = p.min_inclusive ? v < p.min : v <= p.min;

@@ -303,9 +303,7 @@ public:
   // The result once the driver is done: mean forces, the snapshots nearest k/n of the run and the
   // final damage census.
   CuttingResult finish(const DriveReport& report) {
-    r_.resumed_from_step = static_cast<long>(report.resumed_from_step);
-    r_.checkpoints_written = report.checkpoints_written;
-    r_.checkpoint_error = report.checkpoint_error;
+    r_.drive = report;
     r_.steps = solver_.steps();
     r_.travel_first_drop = detector_->first_drop();
     if (tacc_all_ > 0.0) {

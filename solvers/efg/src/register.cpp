@@ -286,12 +286,8 @@ CuttingSetup cutting_setup_from(const Values& v) {
 
 RunOutput cutting_output(const CuttingSetup& s, const CuttingResult& r, double wall) {
   RunOutput out;
-  if (!r.checkpoint_error.empty())
-    out.notes.push_back("efg_cutting: a checkpoint could not be written (" + r.checkpoint_error + "); the run went on");
-  if (r.resumed_from_step > 0)
-    out.notes.push_back("efg_cutting: resumed from a checkpoint at step " + std::to_string(r.resumed_from_step) +
-                        " (the result equals an uninterrupted run with the same thread count; node_steps_per_s "
-                        "counts the steps since the resume)");
+  out.notes = drive_notes(r.drive, "efg_cutting");
+  if (r.drive.resumed_from_step > 0) out.notes.push_back("efg_cutting: node_steps_per_s counts the steps since the resume");
   Table t;
   t.name = "forces";
   t.add("t", "s", r.t);
@@ -338,7 +334,7 @@ RunOutput cutting_output(const CuttingSetup& s, const CuttingResult& r, double w
                  {"nodes", static_cast<double>(r.nodes)},
                  {"gauss_points", ng},
                  {"steps", static_cast<double>(r.steps)},
-                 {"node_steps_per_s", static_cast<double>(r.nodes) * static_cast<double>(r.steps - r.resumed_from_step) / wall},
+                 {"node_steps_per_s", static_cast<double>(r.nodes) * static_cast<double>(r.steps - static_cast<long>(r.drive.resumed_from_step)) / wall},
                  {"E1_used", m.E1},
                  {"E2_used", m.E2},
                  {"nu12_used", m.nu12},

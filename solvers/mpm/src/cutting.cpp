@@ -274,18 +274,17 @@ public:
       : pb_(pb), T_(T), out_dt_(out_dt), nsnap_(nsnap), t_window_(t_window), max_steps_(max_steps),
         progress_(progress), xt0_(xt0), next_out_(out_dt), t0_(std::chrono::steady_clock::now()) {}
 
-  bool done() const override { return k_ >= max_steps_ || !(pb_.time() < T_ - 0.5 * pb_.dt()); }
+  bool done() const override { return pb_.steps() >= max_steps_ || !(pb_.time() < T_ - 0.5 * pb_.dt()); }
   std::size_t steps() const override { return static_cast<std::size_t>(pb_.steps()); }
 
   void advance() override {
     pb_.step();
     // blow-up guard: a non-finite state or a particle off the grid stops the run (every 16 steps
     // and at the last, so that the scan costs a fraction of a step)
-    if (k_ % 16 == 15 || k_ + 1 == max_steps_ || !std::isfinite(pb_.contact_forces().total.x())) {
+    if (pb_.steps() % 16 == 0 || pb_.steps() == max_steps_ || !std::isfinite(pb_.contact_forces().total.x())) {
       const std::string f = pb_.fault();
       if (!f.empty()) throw std::runtime_error("MPM run stopped: " + f);
     }
-    ++k_;
     if (!window_open_ && pb_.time() >= t_window_ - 0.5 * pb_.dt()) {
       window_open_ = true;
       e_at_window_ = pb_.released_energy();
@@ -328,7 +327,6 @@ public:
     for (const auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph}) w.vec(*v);
     for (double d : {acc_c_, acc_t_, acc_nb_, next_out_, e_at_window_, eI_at_window_}) w.f64(d);
     w.u64(static_cast<std::uint64_t>(acc_n_));
-    w.u64(static_cast<std::uint64_t>(k_));
     w.u64(static_cast<std::uint64_t>(snap_done_));
     w.u64(window_open_ ? 1 : 0);
     w.u64(snapshots.size());
@@ -340,7 +338,6 @@ public:
     for (auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph}) *v = r.vec();
     for (double* d : {&acc_c_, &acc_t_, &acc_nb_, &next_out_, &e_at_window_, &eI_at_window_}) *d = r.f64();
     acc_n_ = static_cast<long>(r.u64());
-    k_ = static_cast<long>(r.u64());
     snap_done_ = static_cast<int>(r.u64());
     window_open_ = r.u64() != 0;
     snapshots.clear();
@@ -364,7 +361,7 @@ private:
   const ProgressFn& progress_;
   const double xt0_;
   double acc_c_ = 0.0, acc_t_ = 0.0, acc_nb_ = 0.0;
-  long acc_n_ = 0, k_ = 0;
+  long acc_n_ = 0;
   double next_out_;
   int snap_done_ = 0;
   // released energy (total and mode I) when the steady window opens, for the steady-state mode mix

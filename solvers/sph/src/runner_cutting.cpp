@@ -382,9 +382,7 @@ public:
   // and the heat audit.
   CuttingResult finish(const DriveReport& report) {
     CuttingResult& r = r_;
-    r.resumed_from_step = report.resumed_from_step;
-    r.checkpoints_written = report.checkpoints_written;
-    r.checkpoint_error = report.checkpoint_error;
+    r.drive = report;
     r.steps = s_.steps();
     r.fc_mean = steady_t_ > 0.0 ? steady_fc_ / steady_t_ : nan_value();
     r.ft_mean = steady_t_ > 0.0 ? steady_ft_ / steady_t_ : nan_value();
@@ -593,11 +591,7 @@ CuttingSetup cutting_setup_from(const Values& v) {
 
 RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
   RunOutput out;
-  if (!r.checkpoint_error.empty())
-    out.notes.push_back("sph_cutting: a checkpoint could not be written (" + r.checkpoint_error + "); the run went on");
-  if (r.resumed_from_step > 0)
-    out.notes.push_back("sph_cutting: resumed from a checkpoint at step " + std::to_string(r.resumed_from_step) +
-                        " (the result equals an uninterrupted run with the same thread count)");
+  out.notes = drive_notes(r.drive, "sph_cutting");
   Table t;
   t.name = "forces";
   t.add("t", "s", r.t);

@@ -8,7 +8,6 @@
 // Resuming is exact: a run that saves and loads its whole state gives, after a resume, the same
 // result as an uninterrupted run with the same thread count, bit for bit (tested per solver).
 #include <cstddef>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,23 +26,6 @@ public:
   // The whole state of the run: the problem and every observer's accumulators.
   virtual void save(BinaryWriter& w) const = 0;
   virtual void load(BinaryReader& r) = 0;
-};
-
-// A SteppedRun from callables, for a loop that keeps its state in local variables (the solver's
-// runner): `step` advances one step and may set the run's own stop condition, which `done` reads.
-class CallbackRun final : public SteppedRun {
-public:
-  std::function<bool()> finished;
-  std::function<void()> step;
-  std::function<std::size_t()> count;
-  std::function<void(BinaryWriter&)> saver;
-  std::function<void(BinaryReader&)> loader;
-
-  bool done() const override { return finished(); }
-  void advance() override { step(); }
-  std::size_t steps() const override { return count(); }
-  void save(BinaryWriter& w) const override { saver(w); }
-  void load(BinaryReader& r) override { loader(r); }
 };
 
 struct DriveReport {

@@ -70,7 +70,6 @@ ParamSpec param(std::string name, Dim dim, std::string description);
 // and unset; std::nullopt = required.
 ParamSpec param(std::string name, Dim dim, std::string description, std::optional<double> default_value,
                 double min, double max, bool min_inclusive = true, bool max_inclusive = true);
-ParamSpec& positive(ParamSpec& p);
 // A count or an order: a whole number in [min, max].
 ParamSpec integer_param(std::string name, std::string description, std::optional<double> default_value, double min,
                         double max);
@@ -87,9 +86,6 @@ std::string format_param_value(const ParamSpec& p, double value);
 // quantity "value unit" of p's dimension. InputError naming `field` otherwise.
 double parse_param_value(const ParamSpec& p, const std::string& text, const std::string& field);
 std::string kind_name(ParamKind kind);
-// A parameter that selects an option or counts something: its value must be a whole number
-// (InputError naming the parameter otherwise, e.g. criterion = 1.4).
-int whole_number(const Values& v, const std::string& name);
 
 // Check names, fill defaults, check ranges. Throws InputError naming the field and the range.
 Values validate_params(const ModelSpec& spec, const Values& given);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cutbench/common/driver.hpp"
 #include "cutbench/efg/explicit.hpp"
 
 namespace cutbench::efg {
@@ -103,9 +104,7 @@ struct CuttingResult {
   std::vector<CuttingSnapshot> snapshots;
   // Checkpoints (cutbench run --run-cache): the step a resumed run started from (0: from the
   // beginning), how many were written, and why one could not be written (the run goes on).
-  long resumed_from_step = 0;
-  int checkpoints_written = 0;
-  std::string checkpoint_error;
+  DriveReport drive;  // resume and checkpoints of the run (common/driver.hpp)
 };
 
 // Edge-to-surface path search over Gauss points in the reference configuration (the chip-completion

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "cutbench/common/driver.hpp"
 #include "cutbench/common/solver.hpp"
 #include "cutbench/sph/register.hpp"
 #include "cutbench/sph/solid.hpp"
@@ -99,9 +100,7 @@ struct CuttingResult {
   Snapshot snapshot;               // final state: T, eps_p, surface flag
   std::vector<Snapshot> snapshots;  // `snapshots` states, the last one equal to `snapshot`
   Snapshot tool_snapshot;          // final tool particles (world frame) with T
-  std::size_t resumed_from_step = 0;  // > 0: the run resumed from a checkpoint written at that step
-  int checkpoints_written = 0;
-  std::string checkpoint_error;  // non-empty: the last checkpoint that could not be written, and why
+  DriveReport drive;  // resume and checkpoints of the run (common/driver.hpp)
 };
 
 // Peaks of a profile f(s) by hysteresis: a peak counts when f rose by more than rel_threshold x

@@ -1,6 +1,10 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "cutbench/common/checkpoint.hpp"
 
 #include "cutbench/common/errors.hpp"
 #include "cutbench/limit/cutting.hpp"
@@ -69,6 +73,66 @@ BOOST_AUTO_TEST_CASE(steady_state_loop_with_contact_update_and_refinement) {
   // the refinement with the mode-1 loop or with a search outside the eta2 loop is refused
   BOOST_CHECK_THROW(cut->run({{"steady_state", 1.0}, {"adapt_steps", 2.0}}, nullptr), cutbench::InputError);
   BOOST_CHECK_THROW(cut->run({{"contact_search", 2.0}, {"adapt_steps", 2.0}}, nullptr), cutbench::InputError);
+}
+
+// The outer loop checkpoints through the shared driver: the eta2 loop (Fig. 4, tangent exit) at
+// mu = 0.68, l = 2.5 t1, n = 6 steps phi down from phi_M and bisects (4 configurations, about
+// 8 s); interrupted after every configuration and resumed each time, it gives the uninterrupted
+// result bit for bit (every scalar but the wall time, every table). A checkpoint of another run
+// key is not taken over.
+BOOST_AUTO_TEST_CASE(steady_state_loop_resumes_exactly) {
+  using namespace cutbench;
+  SolverRegistry reg;
+  limit::register_solvers(reg);
+  const auto* cut = reg.find("limit_cutting");
+  BOOST_REQUIRE(cut);
+  BOOST_TEST(cut->checkpoints);
+  const Values v = {{"mu", 0.6797}, {"contact_length", 2.5}, {"n", 6.0}, {"steady_state", 2.0}};
+  const RunOutput ref = cut->run(v, nullptr);
+  BOOST_REQUIRE(ref.scalars.at("solves") >= 3.0);
+  const auto dir = std::filesystem::temp_directory_path() / "cutbench_limit_checkpoint";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "tangent_exit.ckpt").string();
+  std::filesystem::remove(path);
+  const CheckpointSpec spec{path, "limit test run", 0.0, true};  // after every configuration
+  RunOutput r;
+  int interruptions = 0;
+  for (;;) {
+    {
+      CheckpointScope scope(spec);
+      try {
+        r = cut->run(v, nullptr);
+        break;
+      } catch (const CheckpointStop&) {
+        ++interruptions;
+      }
+    }
+    BOOST_REQUIRE(interruptions < 100);
+    if (interruptions == 1) {  // another run does not take this checkpoint over
+      CheckpointScope other(CheckpointSpec{path, "another run", 1e9, false});
+      const Values w = {{"n", 4.0}, {"steady_state", 2.0}};  // one configuration
+      const RunOutput fresh = cut->run(w, nullptr);
+      BOOST_TEST(fresh.scalars.at("fc_bar") == cut->run(w, nullptr).scalars.at("fc_bar"));
+      for (const auto& n : fresh.notes) BOOST_TEST(n.find("resumed") == std::string::npos);
+    }
+  }
+  BOOST_TEST(interruptions + 1 == static_cast<int>(ref.scalars.at("solves")));
+  for (const auto& [key, value] : ref.scalars) {
+    if (key == "solve_time") continue;
+    BOOST_TEST_CONTEXT(key) {
+      BOOST_TEST((r.scalars.at(key) == value || (std::isnan(value) && std::isnan(r.scalars.at(key)))));
+    }
+  }
+  BOOST_REQUIRE(r.tables.size() == ref.tables.size());
+  for (std::size_t t = 0; t < ref.tables.size(); ++t)
+    for (const auto& [col, values] : ref.tables[t].columns)
+      BOOST_TEST(r.tables[t].columns.at(col) == values, boost::test_tools::per_element());
+  BOOST_REQUIRE(r.snapshots.size() == ref.snapshots.size());
+  BOOST_TEST(r.snapshots[0].fields.at("v_x") == ref.snapshots[0].fields.at("v_x"), boost::test_tools::per_element());
+  bool noted = false;
+  for (const auto& n : r.notes) noted = noted || n.find("resumed") != std::string::npos;
+  BOOST_TEST(noted);
+  std::filesystem::remove(path);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,12 +1,14 @@
 #include "cutbench/common/driver.hpp"
 
+#include "cutbench/common/errors.hpp"
+
 namespace cutbench {
 
 DriveReport drive(SteppedRun& run, const std::string& solver) {
   DriveReport report;
   const CheckpointSpec* ck = active_checkpoint();
   if (ck && read_checkpoint(*ck, [&](BinaryReader& r) { run.load(r); })) report.resumed_from_step = run.steps();
-  CheckpointClock clock(ck);
+  CheckpointClock clock(ck, run.checkpoint_check_every());
   while (!run.done()) {
     run.advance();
     if (!clock.due(run.steps()) || run.done()) continue;
@@ -22,6 +24,55 @@ DriveReport drive(SteppedRun& run, const std::string& solver) {
     }
   }
   return report;
+}
+
+void ReplayedLoop::advance() {
+  next_ = 0;
+  computed_ = false;
+  try {
+    run_loop();
+    done_ = true;
+  } catch (const Pause&) {
+  }
+}
+
+const std::vector<double>& ReplayedLoop::evaluate(const std::vector<double>& inputs,
+                                                  const std::function<std::vector<double>()>& compute) {
+  if (next_ < records_.size()) {
+    const Record& r = records_[next_++];
+    if (r.inputs != inputs) {
+      throw NumericalError("outer loop: evaluation " + std::to_string(next_) +
+                           " differs from its record (a checkpoint of other sources or settings)");
+    }
+    replayed_ = true;
+    return r.outputs;
+  }
+  if (computed_) throw Pause{};
+  computed_ = true;
+  replayed_ = false;
+  ++next_;
+  records_.push_back({inputs, compute()});
+  return records_.back().outputs;
+}
+
+void ReplayedLoop::save(BinaryWriter& w) const {
+  w.u64(records_.size());
+  for (const auto& r : records_) {
+    w.vec(r.inputs);
+    w.vec(r.outputs);
+  }
+}
+
+void ReplayedLoop::load(BinaryReader& r) {
+  records_.clear();
+  const std::uint64_t n = r.u64();
+  for (std::uint64_t k = 0; k < n; ++k) {
+    Record rec;
+    rec.inputs = r.vec();
+    rec.outputs = r.vec();
+    records_.push_back(std::move(rec));
+  }
+  done_ = false;
 }
 
 std::vector<std::string> drive_notes(const DriveReport& report, const std::string& solver) {

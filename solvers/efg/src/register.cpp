@@ -23,22 +23,6 @@ ParamSpec weight_param() {
                       {{"regularized", "Most-Bucher regularised weight"}, {"cubic_spline", "cubic spline"}}, "regularized");
 }
 
-WeightParams weight_of(const Values& v) {
-  WeightParams w;
-  w.kind = v.at("weight") > 0.5 ? WeightKind::cubic_spline : WeightKind::regularized;
-  return w;
-}
-
-Orthotropic gfrp_of(const Values& v) {
-  Orthotropic m;
-  m.E1 = v.at("E1");
-  m.E2 = v.at("E2");
-  m.nu12 = v.at("nu12");
-  m.G12 = v.at("G12");
-  m.rho = v.at("rho");
-  return m;
-}
-
 std::vector<ParamSpec> material_params() {
   const double inf = HUGE_VAL;
   return {p("E1", Dim::stress, "fibre-direction modulus (Kahwash Table 2)", 34.28e9, 0, inf),
@@ -48,32 +32,64 @@ std::vector<ParamSpec> material_params() {
           p("rho", Dim::density, "density (Table 2's 1.58 read as g/cm^3)", 1580.0, 0, inf)};
 }
 
+// The lamina's elastic constants (Table 2) into the setup's Orthotropic member.
+template <class S>
+void declare_material(DeclaredParams<S>& d, Orthotropic S::*m) {
+  const auto mp = material_params();  // E1, E2, nu12, G12, rho
+  d.add(mp[0], [m](S& s, double v) { (s.*m).E1 = v; })
+      .add(mp[1], [m](S& s, double v) { (s.*m).E2 = v; })
+      .add(mp[2], [m](S& s, double v) { (s.*m).nu12 = v; })
+      .add(mp[3], [m](S& s, double v) { (s.*m).G12 = v; })
+      .add(mp[4], [m](S& s, double v) { (s.*m).rho = v; });
+}
+
+// The MLS weight function into the setup's WeightParams member.
+template <class S>
+void declare_weight(DeclaredParams<S>& d, WeightParams S::*w) {
+  d.add(weight_param(), [w](S& s, double v) { (s.*w).kind = static_cast<WeightKind>(static_cast<int>(v)); });
+}
+
+struct CantileverSetup {
+  int nodes_x = 0, nodes_y = 0;
+  double support_factor = 0, length = 0, height = 0, E = 0, nu = 0, load = 0;
+  WeightParams weight;
+};
+
+const DeclaredParams<CantileverSetup>& cantilever_declaration() {
+  using S = CantileverSetup;
+  static const DeclaredParams<S> d = [] {
+    const double inf = HUGE_VAL;
+    DeclaredParams<S> decl;
+    decl.bind(integer_param("nodes_x", "nodes along the beam", 49, 3, 400), &S::nodes_x)
+        .bind(integer_param("nodes_y", "nodes through the depth", 13, 3, 200), &S::nodes_y)
+        .bind(p("support_factor", Dim::dimensionless, "domain of influence / nodal spacing", 2.5, 1.2, 6), &S::support_factor);
+    declare_weight(decl, &S::weight);
+    decl.bind(p("length", Dim::length, "beam length", 48.0, 0, inf), &S::length)
+        .bind(p("height", Dim::length, "beam depth", 12.0, 0, inf), &S::height)
+        .bind(p("E", Dim::stress, "Young's modulus", 3.0e7, 0, inf), &S::E)
+        .bind(p("nu", Dim::dimensionless, "Poisson ratio", 0.3, 0, 0.5), &S::nu)
+        .bind(p("load", Dim::force_per_width, "end shear resultant per unit thickness", 1000.0, -inf, inf), &S::load);
+    return decl;
+  }();
+  return d;
+}
+
 SolverSpec cantilever_spec() {
-  const double inf = HUGE_VAL;
   SolverSpec cant;
   cant.name = "efg_cantilever";
   cant.description = "EFG static Timoshenko cantilever (plane stress, isotropic): tip deflection and error norms";
   cant.source = "Kahwash et al. 2018 sections 2.2-3.1 (discretisation); Timoshenko & Goodier closed form";
-  cant.params = {integer_param("nodes_x", "nodes along the beam", 49, 3, 400),
-                 integer_param("nodes_y", "nodes through the depth", 13, 3, 200),
-                 p("support_factor", Dim::dimensionless, "domain of influence / nodal spacing", 2.5, 1.2, 6),
-                 weight_param(),
-                 p("length", Dim::length, "beam length", 48.0, 0, inf),
-                 p("height", Dim::length, "beam depth", 12.0, 0, inf),
-                 p("E", Dim::stress, "Young's modulus", 3.0e7, 0, inf),
-                 p("nu", Dim::dimensionless, "Poisson ratio", 0.3, 0, 0.5),
-                 p("load", Dim::force_per_width, "end shear resultant per unit thickness", 1000.0, -inf, inf)};
+  cant.params = cantilever_declaration().specs();
   cant.scalars = {{"tip_deflection", Dim::length, "EFG u_y(L, 0)"},
                   {"tip_deflection_exact", Dim::length, "closed-form u_y(L, 0)"},
                   {"tip_rel_error", Dim::dimensionless, "relative tip deflection error"},
                   {"l2_rel_error", Dim::dimensionless, "relative L2 displacement error"},
                   {"energy_rel_error", Dim::dimensionless, "relative energy-norm error"}};
   cant.run = [](const Values& v, const ProgressFn& progress) {
+    const CantileverSetup s = cantilever_declaration().make(v);
     if (progress) progress(0.0, "assembling");
-    const CantileverResult r =
-        timoshenko_cantilever(static_cast<int>(v.at("nodes_x")), static_cast<int>(v.at("nodes_y")),
-                              v.at("support_factor"), weight_of(v), v.at("length"), v.at("height"), v.at("E"),
-                              v.at("nu"), v.at("load"));
+    const CantileverResult r = timoshenko_cantilever(s.nodes_x, s.nodes_y, s.support_factor, s.weight, s.length,
+                                                     s.height, s.E, s.nu, s.load);
     RunOutput out;
     out.scalars = {{"tip_deflection", r.tip},
                    {"tip_deflection_exact", r.tip_exact},
@@ -88,21 +104,36 @@ SolverSpec cantilever_spec() {
   return cant;
 }
 
+struct WaveSetup {
+  Orthotropic material;
+  double theta = 0, length = 0, cfl = 0;
+  int nodes_x = 0;
+  WeightParams weight;
+};
+
+const DeclaredParams<WaveSetup>& wave_declaration() {
+  using S = WaveSetup;
+  static const DeclaredParams<S> d = [] {
+    const double inf = HUGE_VAL;
+    const double pi = std::acos(-1.0);
+    DeclaredParams<S> decl;
+    declare_material(decl, &S::material);
+    decl.bind(p("theta", Dim::angle, "fibre angle to the bar axis", 0.0, -pi, pi), &S::theta)
+        .bind(p("length", Dim::length, "bar length", 0.2, 0, inf), &S::length)
+        .bind(integer_param("nodes_x", "nodes along the bar", 201, 11, 4000), &S::nodes_x)
+        .bind(p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0), &S::cfl);
+    declare_weight(decl, &S::weight);
+    return decl;
+  }();
+  return d;
+}
+
 SolverSpec wave_spec() {
-  const double inf = HUGE_VAL;
-  const double pi = std::acos(-1.0);
   SolverSpec wave;
   wave.name = "efg_wave";
   wave.description = "EFG explicit plane wave in a laterally constrained bar: measured vs sqrt(Qbar11/rho)";
   wave.source = "Kahwash et al. 2018 Eqs 47-50, 55-56";
-  wave.params = material_params();
-  for (auto q : {p("theta", Dim::angle, "fibre angle to the bar axis", 0.0, -pi, pi),
-                 p("length", Dim::length, "bar length", 0.2, 0, inf),
-                 integer_param("nodes_x", "nodes along the bar", 201, 11, 4000),
-                 p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0)}) {
-    wave.params.push_back(q);
-  }
-  wave.params.push_back(weight_param());
+  wave.params = wave_declaration().specs();
   wave.tables = {{"station_velocity",
                   "axial velocity at the quarter and three-quarter stations",
                   {{"t", "s", "time"},
@@ -113,9 +144,9 @@ SolverSpec wave_spec() {
                   {"wave_speed_rel_error", Dim::dimensionless, "measured/exact - 1"},
                   {"steps", Dim::dimensionless, "time steps"}};
   wave.run = [](const Values& v, const ProgressFn& progress) {
+    const WaveSetup s = wave_declaration().make(v);
     if (progress) progress(0.0, "running");
-    const WaveResult r = bar_wave(gfrp_of(v), v.at("theta"), v.at("length"), static_cast<int>(v.at("nodes_x")), 5,
-                                  v.at("cfl"), Kinematics::small_strain, weight_of(v));
+    const WaveResult r = bar_wave(s.material, s.theta, s.length, s.nodes_x, 5, s.cfl, Kinematics::small_strain, s.weight);
     RunOutput out;
     Table t;
     t.name = "station_velocity";
@@ -133,27 +164,41 @@ SolverSpec wave_spec() {
   return wave;
 }
 
+struct PatchSetup {
+  Orthotropic material;
+  double theta = 0, jitter = 0;
+  int nodes = 0, gauss = 0;
+  WeightParams weight;
+};
+
+const DeclaredParams<PatchSetup>& patch_declaration() {
+  using S = PatchSetup;
+  static const DeclaredParams<S> d = [] {
+    const double pi = std::acos(-1.0);
+    DeclaredParams<S> decl;
+    declare_material(decl, &S::material);
+    decl.bind(p("theta", Dim::angle, "fibre angle", pi / 4, -pi, pi), &S::theta)
+        .bind(integer_param("nodes", "nodes per side", 11, 3, 200), &S::nodes)
+        .bind(p("jitter", Dim::dimensionless, "interior node jitter / spacing", 0.3, 0, 0.45), &S::jitter)
+        .bind(integer_param("gauss", "Gauss points per direction per cell", 2, 1, 4), &S::gauss);
+    declare_weight(decl, &S::weight);
+    return decl;
+  }();
+  return d;
+}
+
 SolverSpec patch_spec() {
-  const double pi = std::acos(-1.0);
   SolverSpec patch;
   patch.name = "efg_patch";
   patch.description = "EFG patch tests: homogeneous finite deformation (TL) and static linear patch";
   patch.source = "Kahwash et al. 2018 sections 2.2-2.3, 3.1";
-  patch.params = material_params();
-  for (auto q : {p("theta", Dim::angle, "fibre angle", pi / 4, -pi, pi),
-                 integer_param("nodes", "nodes per side", 11, 3, 200),
-                 p("jitter", Dim::dimensionless, "interior node jitter / spacing", 0.3, 0, 0.45),
-                 integer_param("gauss", "Gauss points per direction per cell", 2, 1, 4),
-                 weight_param()}) {
-    patch.params.push_back(q);
-  }
+  patch.params = patch_declaration().specs();
   patch.scalars = {{"max_F_error", Dim::dimensionless, "max |F_G - F| (homogeneous deformation)"},
                    {"max_stress_rel_error", Dim::dimensionless, "max relative PK2 error"},
                    {"static_rel_error", Dim::dimensionless, "static patch: max interior nodal error / (|H| L)"}};
   patch.run = [](const Values& v, const ProgressFn&) {
-    const int n = static_cast<int>(v.at("nodes"));
-    const PatchResult r = patch_test(gfrp_of(v), v.at("theta"), n, n, v.at("jitter"),
-                                     static_cast<int>(v.at("gauss")), weight_of(v));
+    const PatchSetup s = patch_declaration().make(v);
+    const PatchResult r = patch_test(s.material, s.theta, s.nodes, s.nodes, s.jitter, s.gauss, s.weight);
     RunOutput out;
     out.scalars = {{"max_F_error", r.max_F_error},
                    {"max_stress_rel_error", r.max_stress_rel_error},
@@ -172,13 +217,8 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
     const double inf = HUGE_VAL;
     const double pi = std::acos(-1.0);
     DeclaredParams<S> decl;
-    const auto m = material_params();  // E1, E2, nu12, G12, rho
-    decl.add(m[0], [](S& s, double v) { s.material.E1 = v; })
-        .add(m[1], [](S& s, double v) { s.material.E2 = v; })
-        .add(m[2], [](S& s, double v) { s.material.nu12 = v; })
-        .add(m[3], [](S& s, double v) { s.material.G12 = v; })
-        .add(m[4], [](S& s, double v) { s.material.rho = v; })
-        .bind(p("theta", Dim::angle, "fibre angle: fibres along (cos, sin) with the tool moving +x", pi / 6, 0, pi), &S::theta)
+    declare_material(decl, &S::material);
+    decl.bind(p("theta", Dim::angle, "fibre angle: fibres along (cos, sin) with the tool moving +x", pi / 6, 0, pi), &S::theta)
         .bind(analytic::criterion_param("larc02"), &S::criterion)
         .add(p("X_T", Dim::stress, "fibre tensile strength (Table 2)", 697.8e6, 0, inf),
              [](S& s, double v) { s.lamina.X_T = v; })

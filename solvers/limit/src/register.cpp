@@ -1,11 +1,14 @@
 #include "cutbench/limit/register.hpp"
 
 #include <limits>
+#include <map>
 #include <utility>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
+#include "cutbench/common/declared.hpp"
+#include "cutbench/common/driver.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/common/glossary.hpp"
 #include "cutbench/limit/cutting.hpp"
@@ -26,22 +29,6 @@ ParamSpec p_nonneg(const std::string& name, Dim dim, const std::string& desc, do
 }
 ParamSpec p_int(const std::string& name, const std::string& desc, double def, double lo, double hi) {
   return integer_param(name, desc, def, lo, hi);
-}
-
-Values validated(const SolverSpec& spec, const Values& given_in) {
-  // NaN is the "not given" sentinel of phi and contact_length (computed defaults); callers that
-  // validate first (framework, `cutbench bench`) pass the NaN default back in, so drop it here
-  Values given;
-  for (const auto& [k, v] : given_in)
-    if (!std::isnan(v)) given[k] = v;
-  ModelSpec tmp;
-  tmp.name = spec.name;
-  tmp.params = spec.params;
-  return validate_params(tmp, given);
-}
-
-int as_int(const Values& v, const std::string& name) {
-  return static_cast<int>(v.at(name));  // validated: a whole number, a switch or an option index
 }
 
 // solve_limit with its wall time in seconds (assembly included).
@@ -150,21 +137,44 @@ void add_snapshot(RunOutput& out, const LimitModel& m, const LimitSolution& s, d
   out.snapshots.push_back(std::move(el));
 }
 
+// The runs take partial Values (tests, `cutbench bench`): the declaration's defaults fill the rest.
+template <class Setup>
+Setup declared_setup(const DeclaredParams<Setup>& d, const std::string& name, const Values& given) {
+  return d.make(validate_params(ModelSpec{name, "", "", d.specs(), {}, {}}, given));
+}
+
+struct StripSetup {
+  double k = 0, length = 0, width = 0;
+  int nx = 0, ny = 0;
+};
+
+const DeclaredParams<StripSetup>& strip_declaration() {
+  using S = StripSetup;
+  static const DeclaredParams<S> d = [] {
+    DeclaredParams<S> decl;
+    decl.bind(p_pos("k", Dim::stress, "shear yield stress", 1.0), &S::k)
+        .bind(p_pos("length", Dim::length, "strip length", 3.0), &S::length)
+        .bind(p_pos("width", Dim::length, "strip width w", 1.0), &S::width)
+        .bind(p_int("nx", "cells along the strip", 4, 1, 200), &S::nx)
+        .bind(p_int("ny", "cells across the strip", 2, 1, 200), &S::ny);
+    return decl;
+  }();
+  return d;
+}
+
 SolverSpec strip_spec() {
   SolverSpec s;
   s.name = "limit_strip";
   s.description = "Verification: plane-strain strip in tension by mixed limit analysis (exact 2 k w on any mesh)";
   s.source = "figueiredo2024 sec. 2.3 (method); classical plane-strain tension";
-  s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("length", Dim::length, "strip length", 3.0),
-              p_pos("width", Dim::length, "strip width w", 1.0), p_int("nx", "cells along the strip", 4, 1, 200),
-              p_int("ny", "cells across the strip", 2, 1, 200)};
+  s.params = strip_declaration().specs();
   s.scalars = {{"collapse_load", Dim::force_per_width, "limit load per unit thickness"},
                {"exact_load", Dim::force_per_width, "2 k w"},
                {"rel_error", Dim::dimensionless, "relative error"}};
-  s.run = [spec = s](const Values& given, const ProgressFn& progress) {
-    const Values v = validated(spec, given);
-    const double w = v.at("width"), k = v.at("k");
-    LimitModel m = strip_tension_model(v.at("length") / w, 1.0, as_int(v, "nx"), as_int(v, "ny"));
+  s.run = [](const Values& given, const ProgressFn& progress) {
+    const StripSetup v = declared_setup(strip_declaration(), "limit_strip", given);
+    const double w = v.width, k = v.k;
+    LimitModel m = strip_tension_model(v.length / w, 1.0, v.nx, v.ny);
     if (progress) progress(0.0, "solving");
     const auto [sol, dt] = timed_solve(m);
     RunOutput out;
@@ -180,22 +190,38 @@ SolverSpec strip_spec() {
   return s;
 }
 
+struct PunchSetup {
+  double k = 0, half_width = 0, grading = 0;
+  int n = 0;
+};
+
+const DeclaredParams<PunchSetup>& punch_declaration() {
+  using S = PunchSetup;
+  static const DeclaredParams<S> d = [] {
+    DeclaredParams<S> decl;
+    decl.bind(p_pos("k", Dim::stress, "shear yield stress", 1.0), &S::k)
+        .bind(p_pos("half_width", Dim::length, "punch half-width B", 1.0), &S::half_width)
+        .bind(p_int("n", "mesh density (cells under the half punch)", 8, 2, 64), &S::n)
+        .bind(p_pos("grading", Dim::dimensionless, "geometric cell-size ratio toward the punch edge", 1.05), &S::grading);
+    return decl;
+  }();
+  return d;
+}
+
 SolverSpec punch_spec() {
   SolverSpec s;
   s.name = "limit_punch";
   s.description = "Verification: Prandtl smooth rigid punch by mixed limit analysis (p = (2 + pi) k)";
   s.source = "figueiredo2024 sec. 2.3 (method); Prandtl (1920)";
-  s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("half_width", Dim::length, "punch half-width B", 1.0),
-              p_int("n", "mesh density (cells under the half punch)", 8, 2, 64),
-              p_pos("grading", Dim::dimensionless, "geometric cell-size ratio toward the punch edge", 1.05)};
+  s.params = punch_declaration().specs();
   s.scalars = {{"pressure", Dim::stress, "mean punch pressure at collapse"},
                {"pressure_over_k", Dim::dimensionless, "p/k"},
                {"exact_over_k", Dim::dimensionless, "2 + pi"},
                {"rel_error", Dim::dimensionless, "relative error"}};
-  s.run = [spec = s](const Values& given, const ProgressFn& progress) {
-    const Values v = validated(spec, given);
-    const double B = v.at("half_width"), k = v.at("k");
-    LimitModel m = prandtl_punch_model(1.0, as_int(v, "n"), v.at("grading"));
+  s.run = [](const Values& given, const ProgressFn& progress) {
+    const PunchSetup v = declared_setup(punch_declaration(), "limit_punch", given);
+    const double B = v.half_width, k = v.k;
+    LimitModel m = prandtl_punch_model(1.0, v.n, v.grading);
     if (progress) progress(0.0, "solving");
     const auto [sol, dt] = timed_solve(m);
     RunOutput out;
@@ -213,27 +239,45 @@ SolverSpec punch_spec() {
   return s;
 }
 
+struct BlockSetup {
+  double k = 0, width = 0, height = 0, q = 0, mu = 0;
+  int nx = 0, ny = 0;
+};
+
+const DeclaredParams<BlockSetup>& block_declaration() {
+  using S = BlockSetup;
+  static const DeclaredParams<S> d = [] {
+    DeclaredParams<S> decl;
+    decl.bind(p_pos("k", Dim::stress, "shear yield stress", 1.0), &S::k)
+        .bind(p_pos("width", Dim::length, "block width W", 1.0), &S::width)
+        .bind(p_pos("height", Dim::length, "block height H", 1.0), &S::height)
+        .bind(p_nonneg("q", Dim::stress, "pressure on top", 1.0), &S::q)
+        .bind(p_nonneg(glossary::kFriction, Dim::dimensionless, "friction coefficient", 0.3), &S::mu)
+        .bind(p_int("nx", "cells along W", 4, 1, 200), &S::nx)
+        .bind(p_int("ny", "cells along H", 4, 1, 200), &S::ny);
+    return decl;
+  }();
+  return d;
+}
+
 SolverSpec block_spec() {
   SolverSpec s;
   s.name = "limit_block";
   s.description = "Verification: block pushed over a frictional rigid base (F = mu q W while mu q < k)";
   s.source = "figueiredo2024 eqs. 5-9 (permanent contact, Coulomb)";
-  s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("width", Dim::length, "block width W", 1.0),
-              p_pos("height", Dim::length, "block height H", 1.0), p_nonneg("q", Dim::stress, "pressure on top", 1.0),
-              p_nonneg("mu", Dim::dimensionless, "friction coefficient", 0.3), p_int("nx", "cells along W", 4, 1, 200),
-              p_int("ny", "cells along H", 4, 1, 200)};
+  s.params = block_declaration().specs();
   s.scalars = {{"force", Dim::force_per_width, "horizontal collapse force per unit thickness"},
                {"sliding_force", Dim::force_per_width, "mu q W"},
                {"shear_force", Dim::force_per_width, "k W"}};
-  s.run = [spec = s](const Values& given, const ProgressFn& progress) {
-    const Values v = validated(spec, given);
-    const double k = v.at("k"), W = v.at("width"), H = v.at("height");
-    LimitModel m = frictional_block_model(1.0, H / W, v.at("q") / k, v.at("mu"), as_int(v, "nx"), as_int(v, "ny"));
+  s.run = [](const Values& given, const ProgressFn& progress) {
+    const BlockSetup v = declared_setup(block_declaration(), "limit_block", given);
+    const double k = v.k, W = v.width, H = v.height;
+    LimitModel m = frictional_block_model(1.0, H / W, v.q / k, v.mu, v.nx, v.ny);
     if (progress) progress(0.0, "solving");
     const auto [sol, dt] = timed_solve(m);
     RunOutput out;
     out.set_scalar("force", sol.collapse * (H / W) * k * W, "N/m");
-    out.set_scalar("sliding_force", v.at("mu") * v.at("q") * W, "N/m");
+    out.set_scalar("sliding_force", v.mu * v.q * W, "N/m");
     out.set_scalar("shear_force", k * W, "N/m");
     add_solver_stats(out, sol, dt);
     add_snapshot(out, m, sol, W, 1.0);
@@ -245,26 +289,6 @@ SolverSpec block_spec() {
 }
 
 // ---- limit_cutting: the run in pieces (setup, modes, solves, steady-state loop, outputs) ----
-
-// The geometry and contact of one cutting run from validated parameters (phi and l: their
-// computed defaults when unset).
-CuttingSetup cutting_setup_from(const Values& v) {
-  const double t1 = v.at("t1"), a = v.at(glossary::kRakeAngle), mu = v.at(glossary::kFriction);
-  CuttingSetup c;
-  c.alpha = a;
-  c.mu = mu;
-  c.phi = std::isnan(v.at("phi")) ? merchant_shear_angle(a, mu) : v.at("phi");
-  const double len = std::isnan(v.at("contact_length")) ? t1 / std::cos(a) : v.at("contact_length");
-  if (!(len > 0.0)) throw InputError("contact_length", "must be positive");
-  c.contact_length = len / t1;
-  c.n = as_int(v, "n");
-  c.coulomb_fixed_point = as_int(v, "coulomb_fixed_point") == 1;
-  c.streamline = as_int(v, "streamline");
-  c.stick_tol = v.at("stick_tol");
-  c.eta2 = v.at("eta2");
-  c.chip_extra = v.at("chip_extra");
-  return c;
-}
 
 // What a run does around the limit-analysis solve: the options of the case and their
 // combinations, checked.
@@ -278,18 +302,98 @@ struct CuttingModes {
   bool tangent() const { return loop_mode == 2; }
 };
 
-CuttingModes cutting_modes_from(const Values& v) {
-  CuttingModes m;
-  m.search_mode = as_int(v, "contact_search");
-  m.loop_mode = as_int(v, "steady_state");
-  m.fit_eta = as_int(v, "fit_eta2") == 1;
-  m.adapt_steps = as_int(v, "adapt_steps");
-  m.anisotropic = as_int(v, "refine") == 1;
+// One cutting run: the scales (the solver works with k = t1 = w = 1), the geometry and contact,
+// and the modes.
+struct CuttingRun {
+  double k = 1.0, t1 = 1.0, w = 1.0;
+  CuttingSetup geometry;  // lengths in t1
+  CuttingModes modes;
+};
+
+// Every parameter of limit_cutting, declared once with where it goes. phi and contact_length
+// default to NaN, "computed" (phi_M of Eq. 1, t1/cos(alpha)); the contact length is an absolute
+// length here and made relative to t1 by cutting_run_from.
+const DeclaredParams<CuttingRun>& cutting_declaration() {
+  using S = CuttingRun;
+  static const DeclaredParams<S> d = [] {
+    ParamSpec phi = param("phi", Dim::angle, "shear angle (default: Merchant, Eq. 1)");
+    phi.default_value = nan_value();
+    phi.min = 0.0;
+    phi.max = 0.5 * kPi;
+    phi.min_inclusive = phi.max_inclusive = false;
+    ParamSpec l = param("contact_length", Dim::length, "tool-chip contact length l (default: t1/cos(alpha))");
+    l.default_value = nan_value();
+    ParamSpec alpha = param(glossary::kRakeAngle, Dim::angle, "rake angle alpha");
+    alpha.default_value = 0.0;
+    alpha.min = -0.5;
+    alpha.max = 0.7;
+    DeclaredParams<S> decl;
+    decl.bind(p_pos("k", Dim::stress, "shear yield stress", 1.0), &S::k)
+        .bind(p_pos(glossary::kDepthOfCut, Dim::length, "uncut chip thickness", 1.0), &S::t1)
+        .bind(p_pos(glossary::kWidthOfCut, Dim::length, "width of cut", 1.0), &S::w)
+        .add(alpha, [](S& s, double v) { s.geometry.alpha = v; })
+        .add(p_nonneg(glossary::kFriction, Dim::dimensionless, "friction coefficient", 0.0), [](S& s, double v) { s.geometry.mu = v; })
+        .add(phi, [](S& s, double v) { s.geometry.phi = v; })
+        .add(l, [](S& s, double v) { s.geometry.contact_length = v; })
+        .add(p_int("n", "mesh density (cells across t1)", 8, 2, 64), [](S& s, double v) { s.geometry.n = static_cast<int>(v); })
+        .add(switch_param("coulomb_fixed_point", "true: non-associated Coulomb (fixed point on the pressure); false: the coupled (associated) cone", true),
+             [](S& s, double v) { s.geometry.coulomb_fixed_point = v != 0.0; })
+        .add(option_param("streamline", "free surfaces held as streamlines (v.n = 0)",
+                          {{"none", "no surface held"}, {"top", "the uncut top surface"}, {"top_back", "the uncut top and the chip back"},
+                           {"top_back_beyond", "the uncut top and the chip back beyond the contact length"}},
+                          "top"),
+             [](S& s, double v) { s.geometry.streamline = static_cast<int>(v); })
+        .add(option_param("contact_search", "how the contact length l is found",
+                          {{"fixed", "l as given (contact_length)"},
+                           {"grow", "unrestricted tool: grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact"},
+                           {"separation", "unrestricted tool: natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)"}},
+                          "fixed"),
+             [](S& s, double v) { s.modes.search_mode = static_cast<int>(v); })
+        .add(option_param("steady_state", "steady-state loop of Fig. 4 around the solve (or the search)",
+                          {{"off", "phi as given"},
+                           {"turning_point", "phi <- min(phi*, phi_M) with phi* the free-surface turning point"},
+                           {"tangent_exit", "phi* where the chip leaves the contact along the rake face (stream angle eta2 = 0, velocity tangent to the chip contour): start at phi_M, keep it when eta2 <= 1e-3 rad, else step down by 2 deg and bisect to 0.5 deg"}},
+                          "off"),
+             [](S& s, double v) { s.modes.loop_mode = static_cast<int>(v); })
+        .add(p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3), [](S& s, double v) { s.geometry.stick_tol = v; })
+        .add(param("eta2", Dim::angle, "stream angle of the chip beyond the contact (Fig. 5): the free chip turned by eta2 away from the tool (< 0: toward the tool side, restricted tool only)", 0.0, -0.7, 0.7),
+             [](S& s, double v) { s.geometry.eta2 = v; })
+        .add(param("chip_extra", Dim::dimensionless, "length of the chip mesh beyond the contact, in t2", 2.0, 0.5, 10.0),
+             [](S& s, double v) { s.geometry.chip_extra = v; })
+        .add(switch_param("fit_eta2", "fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", false),
+             [](S& s, double v) { s.modes.fit_eta = v != 0.0; })
+        .add(p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%) from the structured mesh; at a fixed geometry, or at every phi of the steady_state = 2 loop (with contact_search: l(phi) from the uniform mesh, then the refined permanent contact over l)", 0, 0, 10),
+             [](S& s, double v) { s.modes.adapt_steps = static_cast<int>(v); })
+        .add(option_param("refine", "kind of the adaptive refinement",
+                          {{"isotropic", "longest-edge bisection"},
+                           {"anisotropic", "recovered Hessian of the dissipation density -> metric-directed bisection + edge swaps, stretched along the shear bands"}},
+                          "isotropic"),
+             [](S& s, double v) { s.modes.anisotropic = v == 1.0; });
+    return decl;
+  }();
+  return d;
+}
+
+// The run from given parameters: validated, the computed defaults of phi and l filled in, the
+// contact length made relative to t1 and the combinations of modes checked.
+CuttingRun cutting_run_from(const Values& given_in) {
+  // NaN is the "not given" sentinel of phi and contact_length (computed defaults); callers that
+  // validate first (framework, `cutbench bench`) pass the NaN default back in, so drop it here
+  Values given;
+  for (const auto& [k, v] : given_in)
+    if (!std::isnan(v)) given[k] = v;
+  CuttingRun r = declared_setup(cutting_declaration(), "limit_cutting", given);
+  CuttingSetup& c = r.geometry;
+  if (std::isnan(c.phi)) c.phi = merchant_shear_angle(c.alpha, c.mu);
+  const double len = std::isnan(c.contact_length) ? r.t1 / std::cos(c.alpha) : c.contact_length;
+  if (!(len > 0.0)) throw InputError("contact_length", "must be positive");
+  c.contact_length = len / r.t1;
+  const CuttingModes& m = r.modes;
   if (m.fit_eta && (m.search() || m.loop() || m.tangent()))
     throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = \"fixed\", steady_state = \"off\")");
   if (m.adapt_steps > 0 && (m.loop() || (m.search() && !m.tangent())))
     throw InputError("adapt_steps", "adaptive refinement needs steady_state = \"off\" or \"tangent_exit\", and a contact search only together with \"tangent_exit\"");
-  return m;
+  return r;
 }
 
 // The limit-analysis solves of one run, counted (Coulomb steps excluded).
@@ -349,54 +453,134 @@ struct SteadyState {
   std::vector<std::string> notes;
 };
 
-// The run's outer loop: the steady-state loop of Fig. 4 (tangent exit or turning point), the
-// eta2 fit, or one solve; c ends as the geometry of the returned solution.
-SteadyState solve_steady_state(CuttingSetup& c, const CuttingModes& m, CuttingSolves& solves, double t1) {
-  SteadyState st;
-  if (m.tangent()) {  // Fig. 4 with phi* from the chip direction after the contact (eta2 = 0)
-    // With a contact search the loop updates l at every phi (Fig. 4: phi -> t2 -> l -> FE):
-    // l(phi) from the uniform mesh, then the permanent contact over l(phi) (w_n = 0, paper
-    // sec. 2.2) is solved (and refined) and eta2 measured on it. The unilateral long-contact
-    // solution itself is not used for eta2: its chip turns away after the separation.
-    auto res = tangent_loop(c, [&](CuttingSetup cs) {
-      if (m.search()) cs.contact_length = solves.search(cs).first;
-      CuttingResult rr = solves.fixed(cs);
-      st.l.push_back(cs.contact_length);
-      st.elements.push_back(rr.model.mesh.num_elements());
-      return rr;
-    });
-    st.phi = res.phi;
-    st.eta = res.eta2;
-    st.fc = res.fc_bar;
-    st.tangent_converged = res.converged;
-    st.tangent_at_merchant = res.at_merchant;
-    c.phi = res.phi_star;
-    for (std::size_t i = 0; i < st.phi.size(); ++i)
-      if (st.phi[i] == res.phi_star) c.contact_length = st.l[i];
-    st.r = std::move(res.final);
-  } else if (m.loop()) {  // Fig. 4: phi <- min(phi*, phi_M), at most 4 updates, |d phi| < 0.5 deg
-    auto res = turning_point_loop(
-        c, [&](CuttingSetup& cs) { return solves.once(cs); },
-        [](const CuttingSetup& cs, const CuttingResult& rr) { return measured_shear_angle(cs, rr); },
-        [&](CuttingSetup& cs) {
-          if (m.search()) cs.contact_length = t1 / std::cos(cs.alpha) / t1;
-        });
-    st.phi = std::move(res.phi);
-    st.phi_star = std::move(res.phi_star);
-    st.fc = std::move(res.fc_bar);
-    st.r = std::move(res.final);
-  } else if (m.fit_eta) {
-    auto fit = fit_eta2(c, [&](CuttingSetup cs) { return solves.once(cs); });
-    st.eta = fit.eta2;
-    st.phi = fit.exit_angle;  // the fit history
-    c.eta2 = fit.eta2.back();
-    if (!fit.converged) st.notes.push_back("eta2 fit not converged after 6 solves (last exit angle " + std::to_string(fit.exit_angle.back()) + " rad)");
-    st.r = std::move(fit.final);
-  } else {
-    st.r = solves.once(c);
+// The run's outer loop (the steady-state loop of Fig. 4, tangent exit or turning point, the eta2
+// fit, or one solve) through the shared driver: each configuration the loop solves is one
+// evaluation of a ReplayedLoop, recorded with what the loops read (F_c bar, the exit angle, the
+// element count, the contact length found, phi*), so a long loop checkpoints between two
+// configurations and resumes bit for bit. The solutions computed in this process are kept; the
+// final configuration is solved again only when its solution was computed before a resume.
+class CuttingLoopRun : public ReplayedLoop {
+public:
+  explicit CuttingLoopRun(const CuttingRun& run) : run_(run), solves_(run.modes) {}
+
+  const SteadyState& state() const { return st_; }
+  const CuttingSetup& geometry() const { return c_; }  // the geometry of the returned solution
+  int solves() const { return solves_.count; }
+
+protected:
+  void run_loop() override {
+    c_ = run_.geometry;
+    solves_.count = 0;
+    inputs_.clear();
+    st_ = SteadyState{};
+    solve_steady_state();
+    const int e = st_.r.recorded_evaluation;
+    if (e >= 0) {  // the final configuration's summary: its solution
+      const auto kept = full_.find(e);
+      if (kept != full_.end()) {
+        st_.r = kept->second;
+      } else {
+        CuttingSetup cs = inputs_.at(e);
+        const int counted = solves_.count;
+        st_.r = configure(cs);
+        solves_.count = counted;
+      }
+    }
   }
-  return st;
-}
+
+private:
+  // One configuration: with the eta2 loop, the contact search (if any) and the permanent contact
+  // over the length found; otherwise the fixed geometry or the search. May set cs's contact length.
+  CuttingResult configure(CuttingSetup& cs) {
+    if (!run_.modes.tangent()) return solves_.once(cs);
+    if (run_.modes.search()) cs.contact_length = solves_.search(cs).first;
+    return solves_.fixed(cs);
+  }
+
+  // configure(cs) as an evaluation of the replayed loop: a solution, or its recorded summary.
+  CuttingResult evaluated(CuttingSetup& cs) {
+    const CuttingSetup in = cs;
+    CuttingResult computed;
+    const int before = solves_.count;
+    const std::vector<double>& rec = evaluate({cs.phi, cs.contact_length, cs.eta2}, [&] {
+      computed = configure(cs);
+      const double ps = run_.modes.loop() ? measured_shear_angle(cs, computed) : nan_value();
+      return std::vector<double>{computed.fc_bar, computed.chip_exit_angle,
+                                 static_cast<double>(computed.model.mesh.num_elements()), cs.contact_length, ps,
+                                 static_cast<double>(solves_.count - before)};
+    });
+    const int e = static_cast<int>(evaluation_index());
+    inputs_[e] = in;
+    last_phi_star_ = rec[4];
+    last_elements_ = rec[2];
+    if (!replayed()) {
+      full_[e] = computed;
+      return computed;
+    }
+    cs.contact_length = rec[3];
+    solves_.count += static_cast<int>(rec[5]);
+    CuttingResult summary;
+    summary.fc_bar = rec[0];
+    summary.chip_exit_angle = rec[1];
+    summary.recorded_evaluation = e;
+    return summary;
+  }
+
+  void solve_steady_state() {
+    const CuttingModes& m = run_.modes;
+    CuttingSetup& c = c_;
+    SteadyState& st = st_;
+    if (m.tangent()) {  // Fig. 4 with phi* from the chip direction after the contact (eta2 = 0)
+      // With a contact search the loop updates l at every phi (Fig. 4: phi -> t2 -> l -> FE):
+      // l(phi) from the uniform mesh, then the permanent contact over l(phi) (w_n = 0, paper
+      // sec. 2.2) is solved (and refined) and eta2 measured on it. The unilateral long-contact
+      // solution itself is not used for eta2: its chip turns away after the separation.
+      auto res = tangent_loop(c, [&](CuttingSetup cs) {
+        CuttingResult rr = evaluated(cs);
+        st.l.push_back(cs.contact_length);
+        st.elements.push_back(last_elements_);
+        return rr;
+      });
+      st.phi = res.phi;
+      st.eta = res.eta2;
+      st.fc = res.fc_bar;
+      st.tangent_converged = res.converged;
+      st.tangent_at_merchant = res.at_merchant;
+      c.phi = res.phi_star;
+      for (std::size_t i = 0; i < st.phi.size(); ++i)
+        if (st.phi[i] == res.phi_star) c.contact_length = st.l[i];
+      st.r = std::move(res.final);
+    } else if (m.loop()) {  // Fig. 4: phi <- min(phi*, phi_M), at most 4 updates, |d phi| < 0.5 deg
+      auto res = turning_point_loop(
+          c, [&](CuttingSetup& cs) { return evaluated(cs); },
+          [&](const CuttingSetup&, const CuttingResult&) { return last_phi_star_; },
+          [&](CuttingSetup& cs) {
+            if (m.search()) cs.contact_length = run_.t1 / std::cos(cs.alpha) / run_.t1;
+          });
+      st.phi = std::move(res.phi);
+      st.phi_star = std::move(res.phi_star);
+      st.fc = std::move(res.fc_bar);
+      st.r = std::move(res.final);
+    } else if (m.fit_eta) {
+      auto fit = fit_eta2(c, [&](CuttingSetup cs) { return evaluated(cs); });
+      st.eta = fit.eta2;
+      st.phi = fit.exit_angle;  // the fit history
+      c.eta2 = fit.eta2.back();
+      if (!fit.converged) st.notes.push_back("eta2 fit not converged after 6 solves (last exit angle " + std::to_string(fit.exit_angle.back()) + " rad)");
+      st.r = std::move(fit.final);
+    } else {
+      st.r = evaluated(c);
+    }
+  }
+
+  const CuttingRun& run_;
+  CuttingSolves solves_;
+  CuttingSetup c_;
+  SteadyState st_;
+  std::map<int, CuttingSetup> inputs_;   // the setup of every evaluation of the pass
+  std::map<int, CuttingResult> full_;    // the solutions computed in this process
+  double last_phi_star_ = 0.0, last_elements_ = 0.0;
+};
 
 // Admissibility and plastification next to the contact: max sqrt(J2)/k, the yielded share of
 // the stress points of the elements on the contact, and their dissipation profile (rake_layer).
@@ -441,9 +625,9 @@ void add_contact_layer(RunOutput& out, const CuttingSetup& c, const CuttingResul
   out.tables.push_back(std::move(layer));
 }
 
-RunOutput cutting_output(const Values& v, const CuttingSetup& c, const CuttingModes& m, const SteadyState& st,
-                         int solves, double seconds) {
-  const double k = v.at("k"), t1 = v.at("t1"), w = v.at("w"), a = c.alpha, mu = c.mu;
+RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const SteadyState& st, int solves, double seconds) {
+  const CuttingModes& m = run.modes;
+  const double k = run.k, t1 = run.t1, w = run.w, a = c.alpha, mu = c.mu;
   const CuttingResult& r = st.r;
   RunOutput out;
   auto put = [&](const std::string& name, double value, const std::string& unit) { out.set_scalar(name, value, unit); };
@@ -540,44 +724,8 @@ SolverSpec cutting_spec() {
   s.description =
       "Orthogonal cutting by mixed limit analysis: fixed chip geometry (phi, t2, contact length), Coulomb rake contact";
   s.source = "figueiredo2024 sec. 2.1-2.3, Eqs. 1-2, 5-13";
-  ParamSpec phi = param("phi", Dim::angle, "shear angle (default: Merchant, Eq. 1)");
-  phi.default_value = nan_value();
-  phi.min = 0.0;
-  phi.max = 0.5 * kPi;
-  phi.min_inclusive = phi.max_inclusive = false;
-  ParamSpec l = param("contact_length", Dim::length, "tool-chip contact length l (default: t1/cos(alpha))");
-  l.default_value = nan_value();
-  ParamSpec alpha = param(glossary::kRakeAngle, Dim::angle, "rake angle alpha");
-  alpha.default_value = 0.0;
-  alpha.min = -0.5;
-  alpha.max = 0.7;
-  s.params = {p_pos("k", Dim::stress, "shear yield stress", 1.0), p_pos("t1", Dim::length, "uncut chip thickness", 1.0),
-              p_pos("w", Dim::length, "width of cut", 1.0), alpha, p_nonneg("mu", Dim::dimensionless, "friction coefficient", 0.0),
-              phi, l, p_int("n", "mesh density (cells across t1)", 8, 2, 64),
-              switch_param("coulomb_fixed_point", "true: non-associated Coulomb (fixed point on the pressure); false: the coupled (associated) cone", true),
-              option_param("streamline", "free surfaces held as streamlines (v.n = 0)",
-                           {{"none", "no surface held"}, {"top", "the uncut top surface"}, {"top_back", "the uncut top and the chip back"},
-                            {"top_back_beyond", "the uncut top and the chip back beyond the contact length"}},
-                           "top"),
-              option_param("contact_search", "how the contact length l is found",
-                           {{"fixed", "l as given (contact_length)"},
-                            {"grow", "unrestricted tool: grow l from t1/cos(alpha) until sigma_n -> 0 at the end of the permanent contact"},
-                            {"separation", "unrestricted tool: natural separation (unilateral Coulomb contact over 4 t1, l = last node with sigma_n < -0.1 k; profile and statistics over s <= l)"}},
-                           "fixed"),
-              option_param("steady_state", "steady-state loop of Fig. 4 around the solve (or the search)",
-                           {{"off", "phi as given"},
-                            {"turning_point", "phi <- min(phi*, phi_M) with phi* the free-surface turning point"},
-                            {"tangent_exit", "phi* where the chip leaves the contact along the rake face (stream angle eta2 = 0, velocity tangent to the chip contour): start at phi_M, keep it when eta2 <= 1e-3 rad, else step down by 2 deg and bisect to 0.5 deg"}},
-                           "off"),
-              p_pos("stick_tol", Dim::dimensionless, "stick where |w_t| < stick_tol * chip speed", 1e-3),
-              param("eta2", Dim::angle, "stream angle of the chip beyond the contact (Fig. 5): the free chip turned by eta2 away from the tool (< 0: toward the tool side, restricted tool only)", 0.0, -0.7, 0.7),
-              param("chip_extra", Dim::dimensionless, "length of the chip mesh beyond the contact, in t2", 2.0, 0.5, 10.0),
-              switch_param("fit_eta2", "fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", false),
-              p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%) from the structured mesh; at a fixed geometry, or at every phi of the steady_state = 2 loop (with contact_search: l(phi) from the uniform mesh, then the refined permanent contact over l)", 0, 0, 10),
-              option_param("refine", "kind of the adaptive refinement",
-                           {{"isotropic", "longest-edge bisection"},
-                            {"anisotropic", "recovered Hessian of the dissipation density -> metric-directed bisection + edge swaps, stretched along the shear bands"}},
-                           "isotropic")};
+  s.params = cutting_declaration().specs();
+  s.checkpoints = true;
   s.tables = {{"rake_contact",
                "contact stresses along the rake face",
                {{"s_over_l", "1", "distance from the tool tip / contact length"},
@@ -628,16 +776,15 @@ SolverSpec cutting_spec() {
                {"iterations", Dim::dimensionless, "interior-point iterations (last solve)"},
                {"kkt_dimension", Dim::dimensionless, "size of the KKT system"},
                {"solve_time", Dim::time, "wall time of the solves"}};
-  s.run = [spec = s](const Values& given, const ProgressFn& progress) {
-    const Values v = validated(spec, given);
-    CuttingSetup c = cutting_setup_from(v);
-    const CuttingModes m = cutting_modes_from(v);
+  s.run = [](const Values& given, const ProgressFn& progress) {
+    const CuttingRun run = cutting_run_from(given);
     if (progress) progress(0.0, "solving");
     const auto t0 = std::chrono::steady_clock::now();
-    CuttingSolves solves(m);
-    const SteadyState st = solve_steady_state(c, m, solves, v.at("t1"));
+    CuttingLoopRun loop(run);
+    const DriveReport drive_report = drive(loop, "limit_cutting");
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    RunOutput out = cutting_output(v, c, m, st, solves.count, seconds);
+    RunOutput out = cutting_output(run, loop.geometry(), loop.state(), loop.solves(), seconds);
+    for (auto& note : drive_notes(drive_report, "limit_cutting")) out.notes.push_back(std::move(note));
     if (progress) progress(1.0, "done");
     return out;
   };

@@ -2,6 +2,7 @@
 // cooling block with convection and radiation) for the framework.
 #include <cmath>
 
+#include "cutbench/common/declared.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/sph/heat.hpp"
 #include "cutbench/sph/runners.hpp"
@@ -30,23 +31,72 @@ Block block(double lx, double ly, double dx, int layers) {
   return b;
 }
 
-HeatOptions options_for(double scheme) {
+enum class HeatProblem { decaying_mode, cooling_block };
+enum class LaplacianChoice { fmfs, brookshaw, brookshaw_band };
+
+struct HeatRunSetup {
+  HeatProblem problem = HeatProblem::decaying_mode;
+  int n = 0;
+  LaplacianChoice scheme = LaplacianChoice::fmfs;
+  double t_end = 0.0;
+  HeatMaterial material;  // cooling_block
+  HeatBoundary boundary;  // cooling_block
+  double T_initial = 0.0;
+};
+
+const DeclaredParams<HeatRunSetup>& heat_declaration() {
+  using S = HeatRunSetup;
+  static const DeclaredParams<S> d = [] {
+    DeclaredParams<S> decl;
+    ParamSpec t_end = param("t_end", Dim::time, "end time", 0.02, 0.0, 1e6);
+    t_end.min_inclusive = false;
+    decl.bind(option_param("problem", "the heat problem",
+                           {{"decaying_mode", "2D decaying Fourier mode (exact solution)"},
+                            {"cooling_block", "block cooling by convection and radiation"}},
+                           "decaying_mode"),
+              &S::problem)
+        .bind(integer_param("n", "particles per side", 20.0, 4.0, 400.0), &S::n)
+        .bind(option_param("scheme", "the Laplacian of the heat equation",
+                           {{"fmfs", "FMFS inside, Brookshaw on the surface (paper)"},
+                            {"brookshaw", "Brookshaw everywhere"},
+                            {"brookshaw_band", "FMFS inside, Brookshaw on a 2h band at surfaces"}},
+                           "fmfs"),
+              &S::scheme)
+        .bind(t_end, &S::t_end)
+        .add(param("conductivity", Dim::conductivity, "k (cooling_block)", 50.0, 1e-6, 1e6),
+             [](S& s, double v) { s.material.conductivity = v; })
+        .add(param("density", Dim::density, "rho (cooling_block)", 4430.0, 1e-6, 1e6),
+             [](S& s, double v) { s.material.density = v; })
+        .add(param("specific_heat", Dim::specific_heat, "c_p (cooling_block)", 560.0, 1e-6, 1e7),
+             [](S& s, double v) { s.material.specific_heat = v; })
+        .add(param("h_conv", Dim::heat_transfer, "convection coefficient (cooling_block)", 50.0, 0.0, 1e7),
+             [](S& s, double v) { s.boundary.h_conv = v; })
+        .add(param("emissivity", Dim::dimensionless, "emissivity (cooling_block)", 0.3, 0.0, 1.0),
+             [](S& s, double v) { s.boundary.emissivity = v; })
+        .add(param("T_ambient", Dim::temperature, "ambient temperature (cooling_block)", 300.0, 0.0, 1e4),
+             [](S& s, double v) { s.boundary.T_ambient = v; })
+        .bind(param("T_initial", Dim::temperature, "initial temperature (cooling_block)", 1000.0, 0.0, 1e4), &S::T_initial);
+    return decl;
+  }();
+  return d;
+}
+
+HeatOptions options_for(LaplacianChoice scheme) {
   HeatOptions o;
-  const int s = static_cast<int>(scheme);
-  o.scheme = s == 1 ? HeatScheme::brookshaw : HeatScheme::fmfs;
-  o.brookshaw_band = s == 2;
+  o.scheme = scheme == LaplacianChoice::brookshaw ? HeatScheme::brookshaw : HeatScheme::fmfs;
+  o.brookshaw_band = scheme == LaplacianChoice::brookshaw_band;
   return o;
 }
 
-RunOutput run_mode(const Values& v, const ProgressFn& progress) {
-  const int n = static_cast<int>(v.at("n"));
-  const double alpha = 1.0, t_end = v.at("t_end");
+RunOutput run_mode(const HeatRunSetup& v, const ProgressFn& progress) {
+  const int n = v.n;
+  const double alpha = 1.0, t_end = v.t_end;
   const auto exact = [&](const Vec2& p, double t) {
     return std::sin(kPi * p.x()) * std::sin(kPi * p.y()) * std::exp(-2.0 * kPi * kPi * alpha * t);
   };
   const double dx = 1.0 / n;
   auto b = block(1.0, 1.0, dx, 3);
-  HeatConduction s(b.x, b.v, 1.5 * dx, HeatMaterial{1.0, 1.0, 1.0}, HeatBoundary{}, options_for(v.at("scheme")));
+  HeatConduction s(b.x, b.v, 1.5 * dx, HeatMaterial{1.0, 1.0, 1.0}, HeatBoundary{}, options_for(v.scheme));
   s.set_dirichlet(b.fixed, exact);
   s.set_temperature(exact);
   s.setup();
@@ -84,14 +134,13 @@ RunOutput run_mode(const Values& v, const ProgressFn& progress) {
   return out;
 }
 
-RunOutput run_cooling(const Values& v, const ProgressFn& progress) {
-  const int n = static_cast<int>(v.at("n"));
-  const double L = 2e-3, dx = L / n, t_end = v.at("t_end");
+RunOutput run_cooling(const HeatRunSetup& v, const ProgressFn& progress) {
+  const int n = v.n;
+  const double L = 2e-3, dx = L / n, t_end = v.t_end;
   auto b = block(L, L, dx, 0);
-  const HeatMaterial mat{v.at("conductivity"), v.at("density"), v.at("specific_heat")};
-  const HeatBoundary bc{v.at("h_conv"), v.at("emissivity"), v.at("T_ambient")};
-  HeatConduction s(b.x, b.v, 1.5 * dx, mat, bc, options_for(v.at("scheme")));
-  s.set_temperature(std::vector<double>(b.x.size(), v.at("T_initial")));
+  const HeatMaterial mat = v.material;
+  HeatConduction s(b.x, b.v, 1.5 * dx, mat, v.boundary, options_for(v.scheme));
+  s.set_temperature(std::vector<double>(b.x.size(), v.T_initial));
   s.setup();
   const double e0 = s.thermal_energy(), dt = s.stable_time_step();
   Table hist;
@@ -136,20 +185,7 @@ SolverSpec detail::heat_spec() {
   s.name = "sph_heat";
   s.description = "SPH transient heat conduction: decaying mode (problem decaying_mode) or cooling block (problem cooling_block)";
   s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Eqs. 4, 7, 8, 12, 13; Sec. 4.2";
-  s.params = {
-      option_param("problem", "the heat problem", {{"decaying_mode", "2D decaying Fourier mode (exact solution)"}, {"cooling_block", "block cooling by convection and radiation"}}, "decaying_mode"),
-      integer_param("n", "particles per side", 20.0, 4.0, 400.0),
-      option_param("scheme", "the Laplacian of the heat equation", {{"fmfs", "FMFS inside, Brookshaw on the surface (paper)"}, {"brookshaw", "Brookshaw everywhere"}, {"brookshaw_band", "FMFS inside, Brookshaw on a 2h band at surfaces"}}, "fmfs"),
-      param("t_end", Dim::time, "end time", 0.02, 0.0, 1e6),
-      param("conductivity", Dim::conductivity, "k (cooling_block)", 50.0, 1e-6, 1e6),
-      param("density", Dim::density, "rho (cooling_block)", 4430.0, 1e-6, 1e6),
-      param("specific_heat", Dim::specific_heat, "c_p (cooling_block)", 560.0, 1e-6, 1e7),
-      param("h_conv", Dim::heat_transfer, "convection coefficient (cooling_block)", 50.0, 0.0, 1e7),
-      param("emissivity", Dim::dimensionless, "emissivity (cooling_block)", 0.3, 0.0, 1.0),
-      param("T_ambient", Dim::temperature, "ambient temperature (cooling_block)", 300.0, 0.0, 1e4),
-      param("T_initial", Dim::temperature, "initial temperature (cooling_block)", 1000.0, 0.0, 1e4),
-  };
-  s.params[3].min_inclusive = false;
+  s.params = heat_declaration().specs();
   s.tables = {{"profile",
                "decaying_mode: temperature along the mid-line at the end",
                {{"x", "m", "position"}, {"T", "K", "SPH temperature"}, {"T_exact", "K", "exact temperature"}}},
@@ -164,7 +200,8 @@ SolverSpec detail::heat_spec() {
                {"energy_lost", Dim::force_per_width, "cooling_block: J per metre of depth"},
                {"flux_integral", Dim::force_per_width, "cooling_block: J per metre of depth"}};
   s.run = [](const Values& v, const ProgressFn& progress) {
-    return v.at("problem") == 0.0 ? run_mode(v, progress) : run_cooling(v, progress);
+    const HeatRunSetup setup = heat_declaration().make(v);
+    return setup.problem == HeatProblem::decaying_mode ? run_mode(setup, progress) : run_cooling(setup, progress);
   };
   return s;
 }

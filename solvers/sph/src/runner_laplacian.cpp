@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cutbench/common/declared.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/sph/lattice.hpp"
 #include "cutbench/sph/operators.hpp"
@@ -58,20 +59,43 @@ LaplacianReconstruction laplacian_reconstruction(std::size_t n, double h_over_dx
   return out;
 }
 
+namespace {
+
+enum class LaplacianOperators { both, brookshaw, fmfs };
+
+struct LaplacianSetup {
+  int n = 0;
+  double h_over_dx = 0.0, jitter = 0.0;
+  double seed = 0.0;  // a whole number up to 2^32 - 1
+  LaplacianOperators scheme = LaplacianOperators::both;
+};
+
+const DeclaredParams<LaplacianSetup>& laplacian_declaration() {
+  using S = LaplacianSetup;
+  static const DeclaredParams<S> d = [] {
+    DeclaredParams<S> decl;
+    decl.bind(integer_param("n", "particles per side", 21.0, 3.0, 2001.0), &S::n)
+        .bind(param("h_over_dx", Dim::dimensionless, "smoothing length over particle spacing", 1.5, 0.5, 4.0), &S::h_over_dx)
+        .bind(param("jitter", Dim::dimensionless, "random displacement amplitude as a fraction of dx", 0.0, 0.0, 0.5, true, false),
+              &S::jitter)
+        .bind(integer_param("seed", "jitter random seed", 1.0, 0.0, 4294967295.0), &S::seed)
+        .bind(option_param("scheme", "the operators evaluated (the other column is NaN)",
+                           {{"both", "Brookshaw and FMFS"}, {"brookshaw", "Brookshaw only"}, {"fmfs", "FMFS only"}}, "both"),
+              &S::scheme);
+    return decl;
+  }();
+  return d;
+}
+
+}  // namespace
+
 SolverSpec detail::laplacian_spec() {
   SolverSpec s;
   s.name = "sph_laplacian";
   s.description = "Reconstruction of the Laplacian of x^2 + y^2 on a particle lattice over [-1,1]^2 "
                   "with the Brookshaw and FMFS operators";
   s.source = "Afrasiabi et al. (2021) Appl. Sci. 11:1020, Sec. 5.1, Fig. 3; Eqs. 12-15";
-  s.params = {
-      integer_param("n", "particles per side", 21.0, 3.0, 2001.0),
-      param("h_over_dx", Dim::dimensionless, "smoothing length over particle spacing", 1.5, 0.5, 4.0),
-      param("jitter", Dim::dimensionless, "random displacement amplitude as a fraction of dx", 0.0, 0.0, 0.5, true,
-            false),
-      integer_param("seed", "jitter random seed", 1.0, 0.0, 4294967295.0),
-      option_param("scheme", "the operators evaluated (the other column is NaN)",
-                 {{"both", "Brookshaw and FMFS"}, {"brookshaw", "Brookshaw only"}, {"fmfs", "FMFS only"}}, "both")};
+  s.params = laplacian_declaration().specs();
   s.tables = {{"laplacian",
                "the reconstructed Laplacian at every particle",
                {{"x", "1", "position"},
@@ -88,12 +112,11 @@ SolverSpec detail::laplacian_spec() {
       {"fmfs_irregular", Dim::dimensionless, "particles where the FMFS system was singular"},
   };
   s.run = [](const Values& v, const ProgressFn& progress) {
-    const double nd = v.at("n");  // validated: a whole number
-    const double sch = v.at("scheme");
+    const LaplacianSetup setup = laplacian_declaration().make(v);
     if (progress) progress(0.0, "building lattice");
-    auto r = laplacian_reconstruction(static_cast<std::size_t>(nd), v.at("h_over_dx"), v.at("jitter"),
-                                      static_cast<std::uint64_t>(v.at("seed")));
-    const int scheme_id = static_cast<int>(sch);
+    auto r = laplacian_reconstruction(static_cast<std::size_t>(setup.n), setup.h_over_dx, setup.jitter,
+                                      static_cast<std::uint64_t>(setup.seed));
+    const bool brookshaw = setup.scheme != LaplacianOperators::fmfs, fmfs = setup.scheme != LaplacianOperators::brookshaw;
     RunOutput out;
     Table t;
     t.name = "laplacian";
@@ -101,16 +124,16 @@ SolverSpec detail::laplacian_spec() {
     t.add("y", "1", r.y);
     t.add("exact", "1", r.exact);
     const double nan = nan_value();
-    t.add("brookshaw", "1", scheme_id == 2 ? std::vector<double>(r.x.size(), nan) : r.brookshaw);
-    t.add("fmfs", "1", scheme_id == 1 ? std::vector<double>(r.x.size(), nan) : r.fmfs);
+    t.add("brookshaw", "1", brookshaw ? r.brookshaw : std::vector<double>(r.x.size(), nan));
+    t.add("fmfs", "1", fmfs ? r.fmfs : std::vector<double>(r.x.size(), nan));
     out.tables.push_back(std::move(t));
-    if (scheme_id != 2) {
+    if (brookshaw) {
       out.scalars["brookshaw_interior_mean"] = r.brookshaw_interior_mean;
       out.scalars["brookshaw_interior_max_abs_error"] = r.brookshaw_interior_max_abs_error;
       out.scalars["brookshaw_corner"] = r.brookshaw_corner;
       out.scalars["brookshaw_max_abs_error"] = r.brookshaw_max_abs_error;
     }
-    if (scheme_id != 1) {
+    if (fmfs) {
       out.scalars["fmfs_max_abs_error"] = r.fmfs_max_abs_error;
       out.scalars["fmfs_irregular"] = r.fmfs_irregular;
     }

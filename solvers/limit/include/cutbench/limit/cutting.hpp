@@ -85,6 +85,9 @@ struct CuttingResult {
   // mean velocity ∫v ds over the chip end relative to the rake direction r, > 0 away from the tool
   // (the free chip lifts off / curls away), < 0 toward it (it would penetrate the rake face beyond l)
   double chip_exit_angle = 0.0;
+  // >= 0: not a solution but the summary (fc_bar, chip_exit_angle) of that evaluation of a
+  // run's outer loop, answered from its record while the loop is replayed (checkpoints)
+  int recorded_evaluation = -1;
 };
 
 double chip_thickness(double t1, double phi, double alpha);  // Eq. 2

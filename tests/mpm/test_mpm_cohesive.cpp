@@ -103,6 +103,10 @@ BOOST_AUTO_TEST_CASE(mpm_block_debonding_energy_balance) {
   cfg.material = elastic();
   cfg.numerics.pic_fraction = 0.0;
   cfg.numerics.position_order = 0;
+  // USL: the strain rate from the grid velocities; with FLIP the re-extrapolating schemes add
+  // particle-velocity noise at the block edges to it (lost 17.1 J/m with MUSL, 17.9 with USAVG,
+  // solvers/mpm/README.md), which is not what this test isolates
+  cfg.numerics.strain_update = Numerics::StrainUpdate::usl;
   cfg.crack.enabled = true;
   cfg.crack.y = -0.02 * dx;  // just below the node row at the interface
   cfg.crack.x_begin = 0.0;
@@ -117,6 +121,7 @@ BOOST_AUTO_TEST_CASE(mpm_block_debonding_energy_balance) {
   fill_rect(pb, dx, 0.0, L, 0.0, H, false, [&](double, double) { return Eigen::Vector2d(0.0, v0); });
   pb.setup();
   const double e0 = pb.kinetic_energy() + pb.strain_energy();
+  BOOST_TEST(pb.energy_balance().residual == 0.0);  // the initial energy is part of the balance
   while (pb.time() < 40e-6) pb.step();
   const double ef = pb.kinetic_energy() + pb.strain_energy();
   std::size_t failed = 0;
@@ -125,6 +130,9 @@ BOOST_AUTO_TEST_CASE(mpm_block_debonding_energy_balance) {
               "G_c L = %.3f J/m (%.2f%%); %zu/%zu segments failed, mode-I fraction %.3f\n",
               v0, e0, ef, e0 - ef, pb.released_energy(), Gc * L, 100.0 * ((e0 - ef) / (Gc * L) - 1.0), failed,
               pb.crack().state.size(), pb.mode1_fraction());
+  const EnergyBalance eb = pb.energy_balance();
+  std::printf("debonding audit: kinetic %.3f strain %.3f plastic %.3f cohesive %.3f PIC %.3f residual %.3f J/m\n",
+              eb.kinetic, eb.strain, eb.plastic, eb.cohesive, eb.audit.pic_damping, eb.residual);
   BOOST_TEST(failed == pb.crack().state.size());
   BOOST_TEST(pb.released_energy() == Gc * L, tt::tolerance(0.02));
   BOOST_TEST(e0 - ef == Gc * L, tt::tolerance(0.05));

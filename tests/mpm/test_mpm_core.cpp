@@ -1,6 +1,7 @@
 #define BOOST_TEST_MODULE mpm_core
 #include <boost/test/unit_test.hpp>
 #include <cmath>
+#include <map>
 #include <cstdio>
 #include <vector>
 
@@ -104,7 +105,10 @@ struct Bar {
 };
 
 // Fixed-free bar in uniaxial strain (all nodes roller-supported in y), fundamental mode.
-MpmProblem make_bar(const Bar& b, double v0, double pic, bool rollers, bool musl = false, bool blend = false) {
+using Scheme = Numerics::StrainUpdate;
+const char* scheme_name(Scheme s) { return s == Scheme::usl ? "USL" : s == Scheme::musl ? "MUSL" : "USAVG"; }
+
+MpmProblem make_bar(const Bar& b, double v0, double pic, bool rollers, Scheme scheme = Scheme::usavg) {
   MpmConfig cfg;
   cfg.grid.dx = b.dx;
   cfg.grid.x0 = -3 * b.dx;
@@ -114,8 +118,7 @@ MpmProblem make_bar(const Bar& b, double v0, double pic, bool rollers, bool musl
   cfg.material = elastic();
   cfg.numerics.pic_fraction = pic;
   cfg.numerics.position_order = 0;
-  cfg.numerics.musl = musl;
-  cfg.numerics.blend = blend;
+  cfg.numerics.strain_update = scheme;
   cfg.fixed_mask = [rollers](double x, double) { return (x <= 1e-12 ? 1 : 0) | (rollers ? 2 : 0); };
   MpmProblem pb(cfg);
   const double L = b.L;
@@ -127,10 +130,9 @@ MpmProblem make_bar(const Bar& b, double v0, double pic, bool rollers, bool musl
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(elastic_wave_speed_in_bar) {
- for (int scheme : {0, 1, 2}) {  // USL, MUSL, blend
-  const bool musl = scheme >= 1;
+ for (Scheme scheme : {Scheme::usl, Scheme::musl, Scheme::usavg}) {
   Bar b;
-  MpmProblem pb = make_bar(b, 0.5, 0.0, true, musl, scheme == 2);
+  MpmProblem pb = make_bar(b, 0.5, 0.0, true, scheme);
   const double c = pb.config().material.p_wave_speed();
   const double T = 4.0 * b.L / c;
   std::vector<double> crossings;
@@ -146,38 +148,62 @@ BOOST_AUTO_TEST_CASE(elastic_wave_speed_in_bar) {
   const double period = 2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   const double c_meas = 4.0 * b.L / period;
   std::printf("wave speed (%s): measured %.2f m/s, plane-strain P-wave sqrt((K+4G/3)/rho) = %.2f m/s (%.3f%%)\n",
-              scheme == 2 ? "blend" : musl ? "MUSL" : "USL", c_meas, c, 100.0 * (c_meas / c - 1.0));
+              scheme_name(scheme), c_meas, c, 100.0 * (c_meas / c - 1.0));
   BOOST_TEST(c_meas == c, tt::tolerance(0.02));
  }
 }
 
+// Energy of a free elastic vibration with FLIP (no PIC damping) over about five periods. The
+// strain-update schemes differ here: USL's strain rate lags the forces and loses energy; USAVG,
+// NairnMPM's default, averages a strain-first and a strain-last half step, whose energy errors
+// have opposite signs (Bardenhagen 2002; Nairn's NairnMPM notes), and conserves it best. The
+// scheme test: USAVG's drift is the smallest of the three.
 BOOST_AUTO_TEST_CASE(flip_energy_conservation_elastic_vibration) {
   Bar b;
-  MpmProblem pb = make_bar(b, 10.0, 0.0, false);  // plane strain, free lateral faces, cell crossing
-  const double e0 = pb.kinetic_energy() + pb.strain_energy();
-  const double c = pb.config().material.p_wave_speed();
-  const double T = 4.0 * b.L / c;  // upper bound on the period (bar wave is slower)
-  double emin = e0, emax = e0;
-  while (pb.time() < 5.0 * T) {
-    pb.step();
-    const double e = pb.kinetic_energy() + pb.strain_energy();
-    emin = std::min(emin, e);
-    emax = std::max(emax, e);
+  std::map<Scheme, double> drift;
+  for (Scheme scheme : {Scheme::usl, Scheme::musl, Scheme::usavg}) {
+    MpmProblem pb = make_bar(b, 10.0, 0.0, false, scheme);  // plane strain, free lateral faces, cell crossing
+    const double e0 = pb.kinetic_energy() + pb.strain_energy();
+    const double c = pb.config().material.p_wave_speed();
+    const double T = 4.0 * b.L / c;  // upper bound on the period (bar wave is slower)
+    double emin = e0, emax = e0;
+    while (pb.time() < 5.0 * T) {
+      pb.step();
+      const double e = pb.kinetic_energy() + pb.strain_energy();
+      emin = std::min(emin, e);
+      emax = std::max(emax, e);
+    }
+    const double ef = pb.kinetic_energy() + pb.strain_energy();
+    drift[scheme] = ef / e0 - 1.0;
+    const EnergyBalance eb = pb.energy_balance();
+    std::printf("FLIP energy over ~5 periods (%s): E0 = %.6g J/m, min %.6g, max %.6g, final %.6g (drift %.3f%%); "
+                "audit residual %.3g J/m\n",
+                scheme_name(scheme), e0, emin, emax, ef, 100.0 * drift[scheme], eb.residual);
+    BOOST_TEST((emax - emin) / e0 < 0.02);
+    // FLIP, no tool, no damping: the audit's residual is the energy lost
+    BOOST_TEST(eb.audit.pic_damping == 0.0);
+    BOOST_TEST(std::fabs(eb.residual - (e0 - ef)) < 1e-9 * e0);
   }
-  const double ef = pb.kinetic_energy() + pb.strain_energy();
-  std::printf("FLIP energy over ~5 periods: E0 = %.6g J/m, min %.6g, max %.6g, final %.6g (drift %.3f%%)\n", e0, emin,
-              emax, ef, 100.0 * (ef / e0 - 1.0));
-  BOOST_TEST((emax - emin) / e0 < 0.02);
+  BOOST_TEST(std::fabs(drift[Scheme::usavg]) < std::fabs(drift[Scheme::usl]));
+  BOOST_TEST(std::fabs(drift[Scheme::usavg]) < std::fabs(drift[Scheme::musl]));
   // PIC for comparison: strongly dissipative (the reason it serves as damping)
   MpmProblem pic = make_bar(b, 10.0, 1.0, false);
-  while (pic.time() < 5.0 * T) pic.step();
+  const double e0 = pic.kinetic_energy() + pic.strain_energy();
+  while (pic.time() < 5.0 * 4.0 * b.L / pic.config().material.p_wave_speed()) pic.step();
   const double ep = pic.kinetic_energy() + pic.strain_energy();
   std::printf("PIC energy after the same time: %.6g J/m (%.1f%% of E0)\n", ep, 100.0 * ep / e0);
-  BOOST_TEST(ep < ef);
+  BOOST_TEST(ep < (1.0 + drift[Scheme::usavg]) * e0);
 }
 
+// The kinematic update is objective: a quarter turn of a free body leaves no stress. Tested with
+// USL, whose strain rate is the gradient of the grid velocities; the re-extrapolating schemes
+// (MUSL, USAVG) add the FLIP particle-velocity noise at the body's edges to the strain rate (von
+// Mises up to 7e-3 G at 20 cells across, solvers/mpm/README.md), a different error from the one
+// this test isolates.
 BOOST_AUTO_TEST_CASE(large_rigid_rotation_without_spurious_stress) {
+ for (Scheme scheme : {Scheme::usl}) {
   MpmConfig cfg;
+  cfg.numerics.strain_update = scheme;
   // 20 x 20 cells across the body: FLIP loses ~1.3% of the angular velocity over a quarter turn at
   // this resolution (6% at 10 x 10 cells, 0.3% at 40 x 40), a discretisation error, not stress.
   const double dx = 0.5e-3, a = 5e-3, omega = 1000.0;
@@ -212,18 +238,19 @@ BOOST_AUTO_TEST_CASE(large_rigid_rotation_without_spurious_stress) {
     stretch_err = std::max(stretch_err, (C - Eigen::Matrix2d::Identity()).cwiseAbs().maxCoeff());
   }
   const double centrifugal = cfg.material.rho * omega * omega * a * a;
-  std::printf("rotation by %.1f deg: max von Mises %.3g Pa (G = %.3g Pa, centrifugal scale rho w^2 a^2 = %.3g Pa), "
+  std::printf("%s rotation by %.1f deg: max von Mises %.3g Pa (G = %.3g Pa, centrifugal scale rho w^2 a^2 = %.3g Pa), "
               "max |angle err| %.2e rad (mean %.2e), max |J-1| %.2e, max |C-I| %.2e, max position error %.4f a\n",
-              omega * pb.time() * 180.0 / M_PI, smax, cfg.material.G, centrifugal, angle_err, mean_err, jerr, stretch_err, pos_err);
+              scheme_name(scheme), omega * pb.time() * 180.0 / M_PI, smax, cfg.material.G, centrifugal, angle_err, mean_err, jerr, stretch_err, pos_err);
   BOOST_TEST(smax < 1e-3 * cfg.material.G);
   BOOST_TEST(angle_err < 0.03);
   BOOST_TEST(stretch_err < 2e-3);
+ }
 }
 
 BOOST_AUTO_TEST_CASE(momentum_conservation_on_grid) {
-  for (int variant = 0; variant < 4; ++variant) {
+  for (int variant = 0; variant < 6; ++variant) {
     const double pic = variant % 2 == 0 ? 0.0 : 1.0;
-    const bool musl = variant >= 2;
+    const Scheme scheme = static_cast<Scheme>(variant / 2);
     MpmConfig cfg;
     const double dx = 1e-3;
     cfg.grid.dx = dx;
@@ -232,7 +259,7 @@ BOOST_AUTO_TEST_CASE(momentum_conservation_on_grid) {
     cfg.material = polyethylene();
     cfg.numerics.pic_fraction = pic;
     cfg.numerics.min_mass_fraction = 0.0;  // keep every node that a particle touches: exact balance
-    cfg.numerics.musl = musl;
+    cfg.numerics.strain_update = scheme;
     MpmProblem pb(cfg);
     unsigned seed = 12345u;
     auto rnd = [&]() {
@@ -251,7 +278,7 @@ BOOST_AUTO_TEST_CASE(momentum_conservation_on_grid) {
     double scale = 0.0;
     for (std::size_t p = 0; p < pb.size(); ++p) scale += pb.mass(p) * 10.0;
     std::printf("momentum (PIC fraction %.0f, %s): max |P - P0| particles %.2e, grid %.2e (scale %.2e)\n", pic,
-                musl ? "MUSL" : "USL", err, gerr, scale);
+                scheme_name(scheme), err, gerr, scale);
     BOOST_TEST(err < 1e-12 * scale);
     BOOST_TEST(gerr < 1e-12 * scale);
   }

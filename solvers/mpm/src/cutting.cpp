@@ -75,16 +75,18 @@ MpmProblem build_cutting_problem(const CuttingSetup& s, double* tool_tip_x0) {
   for (int j = -nbase; j < nh; ++j) {
     for (int i = 0; i < nw; ++i) pb.add_particle((i + 0.5) * ps, (j + 0.5) * ps, vol, false);
   }
-  // tool: wedge behind the tip (xt, 0), bounded by the rake face, the clearance face, its height
-  // and length; particle centres on the same lattice as the specimen.
+  // tool: wedge behind the tip (xt, 0), bounded by the rake face x = xt - y tan(rake), the
+  // clearance face, its height and length. Particle rows at the specimen's row heights, each
+  // row's centres aligned with the rake face (the paper: "particle centers were aligned to
+  // conform to the tool's rake and clearance angles"): the first centre of a row half a particle
+  // size behind the face, so the face is straight at every rake angle.
   const double xt = -0.5 * dx;
   const double ta = std::tan(s.rake), tc = std::tan(s.clearance);
   const int ni = static_cast<int>(std::ceil(tool_len / ps)), nj = static_cast<int>(std::ceil(tool_hgt / ps));
   for (int j = 0; j < nj; ++j) {
     for (int i = 0; i < ni + nj; ++i) {
-      const double x = xt - (i + 0.5) * ps + (j + 0.5) * ps * ta;  // rows follow the rake face
+      const double x = xt - (i + 0.5) * ps - (j + 0.5) * ps * ta;  // rows follow the rake face
       const double y = (j + 0.5) * ps;
-      if (x > xt - y * ta + 1e-12 * ps) continue;      // ahead of the rake face
       if (y < (xt - x) * tc - 1e-12 * ps) continue;    // below the clearance face
       if (x < xt - tool_len) continue;
       pb.add_particle(x, y, vol, true);
@@ -144,15 +146,13 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
              [](S& s, double v) { s.numerics.pic_fraction = v; })
         .add(integer_param("position_order", "order of the particle position update (Eq. 10)", 2.0, 0.0, 2.0),
              [](S& s, double v) { s.numerics.position_order = static_cast<int>(v); })
-        .add(option_param("strain_update", "when the particle strain is updated",
+        .add(option_param("strain_update", "when the particle strain is updated (Numerics::StrainUpdate)",
                           {{"usl", "update stress last: from the updated grid velocities"},
-                           {"musl", "modified USL: from re-extrapolated particle momenta"},
-                           {"blend", "experimental: L = (L_USL + L_MUSL)/2"}},
-                          "usl"),
-             [](S& s, double v) {
-               s.numerics.musl = v >= 1.0;
-               s.numerics.blend = v == 2.0;
-             })
+                           {"musl", "modified USL: from the updated particle momenta re-extrapolated to the grid"},
+                           {"usavg", "NairnMPM's default (USAVG): half first, from the extrapolated momenta with contact, half last, "
+                                     "from the updated particles re-extrapolated at their new positions"}},
+                          "usavg"),
+             [](S& s, double v) { s.numerics.strain_update = static_cast<Numerics::StrainUpdate>(static_cast<int>(v)); })
         .add(switch_param("musl_recontact",
                           "MUSL only: re-apply tool/crack contact to the re-extrapolated momenta (false: skip it, diagnostic)",
                           true),
@@ -160,7 +160,9 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
         .bind(integer_param("particles_through_chip", "particles through the depth of cut", 15.0, 2.0, 200.0),
               &S::particles_through_chip)
         .bind(param("width_factor", Dim::dimensionless, "specimen width / h", 30.0, 4.0, 200.0), &S::width_factor)
-        .bind(param("precrack_factor", Dim::dimensionless, "explicit crack (cohesive) length / h", 18.0, 2.0, 200.0),
+        .bind(param("precrack_factor", Dim::dimensionless,
+                    "explicit crack (cohesive) length / h (the paper's a = 18; 26 so that the crack tip stays clear of the crack's end, FINDINGS F03)",
+                    26.0, 2.0, 200.0),
               &S::precrack_factor)
         .bind(param("free_crack_factor", Dim::dimensionless, "traction-free start of the crack / h", 2.0, 0.0, 200.0),
               &S::free_crack_factor)
@@ -301,8 +303,15 @@ public:
       fc.push_back(acc_c_ / n);
       ft.push_back(acc_t_ / n);
       fnb.push_back(acc_nb_ / n);
-      gap.push_back(pb_.crack_tip_x() - 0.5 * pb_.config().crack.seg_len - (xt0_ + pb_.rigid_displacement().x()));
+      const double xtool = xt0_ + pb_.rigid_displacement().x();
+      gap.push_back(pb_.crack_tip_x(xtool - pb_.config().crack.seg_len) - 0.5 * pb_.config().crack.seg_len - xtool);
       alph.push_back(pb_.feedback_alpha());
+      const EnergyBalance eb = pb_.energy_balance();
+      for (auto [v, x] : {std::pair{&e_tool, eb.audit.tool_work}, {&e_kin, eb.kinetic}, {&e_strain, eb.strain},
+                          {&e_plastic, eb.plastic}, {&e_coh, eb.cohesive}, {&e_pic, eb.audit.pic_damping},
+                          {&e_fb, eb.audit.feedback_loss}, {&e_res, eb.residual}}) {
+        v->push_back(x);
+      }
       acc_c_ = acc_t_ = acc_nb_ = 0.0;
       acc_n_ = 0;
       next_out_ += out_dt_;
@@ -324,7 +333,10 @@ public:
 
   void save(BinaryWriter& w) const override {
     pb_.save_state(w);
-    for (const auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph}) w.vec(*v);
+    for (const auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph, &e_tool, &e_kin, &e_strain, &e_plastic, &e_coh, &e_pic,
+                          &e_fb, &e_res}) {
+      w.vec(*v);
+    }
     for (double d : {acc_c_, acc_t_, acc_nb_, next_out_, e_at_window_, eI_at_window_}) w.f64(d);
     w.u64(static_cast<std::uint64_t>(acc_n_));
     w.u64(static_cast<std::uint64_t>(snap_done_));
@@ -335,7 +347,10 @@ public:
 
   void load(BinaryReader& r) override {
     pb_.load_state(r);
-    for (auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph}) *v = r.vec();
+    for (auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph, &e_tool, &e_kin, &e_strain, &e_plastic, &e_coh, &e_pic, &e_fb,
+                    &e_res}) {
+      *v = r.vec();
+    }
     for (double* d : {&acc_c_, &acc_t_, &acc_nb_, &next_out_, &e_at_window_, &eI_at_window_}) *d = r.f64();
     acc_n_ = static_cast<long>(r.u64());
     snap_done_ = static_cast<int>(r.u64());
@@ -350,6 +365,8 @@ public:
   double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
 
   std::vector<double> tt, fc, ft, fnb, gap, alph;  // force history (output-interval means)
+  // energy audit at the output times (MpmProblem::energy_balance)
+  std::vector<double> e_tool, e_kin, e_strain, e_plastic, e_coh, e_pic, e_fb, e_res;
   std::vector<Snapshot> snapshots;
 
 private:
@@ -472,6 +489,18 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   forces.add("tip_gap", "m", gap);
   forces.add("feedback_alpha", "1/s", loop.alph);
   out.tables.push_back(std::move(forces));
+  Table energy;
+  energy.name = "energy";
+  energy.add("t", "s", tt);
+  energy.add("tool_work", "J/m", loop.e_tool);
+  energy.add("kinetic", "J/m", loop.e_kin);
+  energy.add("strain", "J/m", loop.e_strain);
+  energy.add("plastic", "J/m", loop.e_plastic);
+  energy.add("cohesive", "J/m", loop.e_coh);
+  energy.add("pic_damping", "J/m", loop.e_pic);
+  energy.add("feedback_loss", "J/m", loop.e_fb);
+  energy.add("residual", "J/m", loop.e_res);
+  out.tables.push_back(std::move(energy));
 
   const double t_steady = v.at("steady_start_fraction") * T;
   const double t_steady_end = v.at("steady_end_fraction") * T;
@@ -522,6 +551,20 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
     const double eI = e > 0.0 ? pb.mode1_fraction() * e : 0.0;
     put("mode1_fraction_steady", e - e_at_window > 0.0 ? (eI - eI_at_window) / (e - e_at_window) : std::nan(""), "1");
   }
+  {  // the energy audit at the end of the run
+    const EnergyBalance eb = pb.energy_balance();
+    put("energy_tool_work", eb.audit.tool_work, "J/m");
+    put("energy_kinetic", eb.kinetic, "J/m");
+    put("energy_strain", eb.strain, "J/m");
+    put("energy_plastic", eb.plastic, "J/m");
+    put("energy_cohesive", eb.cohesive, "J/m");
+    put("energy_pic_damping", eb.audit.pic_damping, "J/m");
+    put("energy_feedback_loss", eb.audit.feedback_loss, "J/m");
+    put("energy_residual", eb.residual, "J/m");
+    put("energy_residual_fraction", eb.audit.tool_work > 0.0 ? std::fabs(eb.residual) / eb.audit.tool_work : std::nan(""), "1");
+    const double xtool = xt0 + pb.rigid_displacement().x();
+    put("stranded_segments", static_cast<double>(pb.intact_segments_behind(xtool - pb.config().crack.seg_len)), "1");
+  }
   put("particles", static_cast<double>(pb.size()), "1");
   put("steps", static_cast<double>(pb.steps()), "1");
   put("dt", pb.dt(), "s");
@@ -536,8 +579,9 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
                       "material down, the paper's sign); averages over " +
                       std::to_string(t_steady) + " s <= t <= " + std::to_string(t_steady_end) +
                       " s of output-interval means.");
-  out.notes.push_back("touching = mean tool-tip/crack-tip gap in the steady window below one cell (" +
-                      std::to_string(dx) + " m).");
+  out.notes.push_back("touching = mean gap in the steady window below one cell (" + std::to_string(dx) +
+                      " m), the gap from the tool tip to the first intact cohesive segment ahead of it (intact "
+                      "segments left behind the tip, stranded_segments, do not count).");
   if (pb.frozen() > 0) {
     out.notes.push_back(std::to_string(pb.frozen()) + " particles left the grid and were frozen.");
   }
@@ -561,7 +605,7 @@ SolverSpec cutting_solver_spec() {
       {"F_nb", Dim::force_per_width, "steady bottom-face (rubbing) normal force"},
       {"F_nb_std", Dim::force_per_width, "std of F_nb"},
       {"F_nb_over_bGc", Dim::dimensionless, "F_nb / (b G_c), the rubbing force of Fig. 10"},
-      {"tip_gap", Dim::length, "mean crack-tip minus tool-tip x in the steady window"},
+      {"tip_gap", Dim::length, "mean gap in the steady window from the tool tip to the crack tip (the first intact cohesive segment ahead of the tool tip)"},
       {"touching", Dim::dimensionless, "1 when the tool touches the crack tip (mean gap below one cell)"},
       {"touching_fraction", Dim::dimensionless, "fraction of steady-window outputs with the gap below one cell"},
       {"h_star", Dim::dimensionless, "Williams' dimensionless depth sigma_y0^2 h / (2 E' G_c), E' = E/(1 - nu^2)"},
@@ -571,6 +615,16 @@ SolverSpec cutting_solver_spec() {
       {"mode1_fraction_steady", Dim::dimensionless,
        "fraction of released energy in mode I, segments failed in the steady window (t >= steady_start_fraction T)"},
       {"released_energy", Dim::force_per_width, "cohesive energy released per unit width (J/m)"},
+      {"stranded_segments", Dim::dimensionless, "intact cohesive segments more than one segment behind the tool tip at the end"},
+      {"energy_tool_work", Dim::force_per_width, "energy audit: work of the tool's contact impulses on the material (J/m)"},
+      {"energy_kinetic", Dim::force_per_width, "energy audit: kinetic energy of the material at the end (J/m)"},
+      {"energy_strain", Dim::force_per_width, "energy audit: stored elastic energy at the end (J/m)"},
+      {"energy_plastic", Dim::force_per_width, "energy audit: plastic work (J/m)"},
+      {"energy_cohesive", Dim::force_per_width, "energy audit: work of the cohesive tractions (J/m)"},
+      {"energy_pic_damping", Dim::force_per_width, "energy audit: kinetic energy removed by the PIC damping of the particle update (J/m)"},
+      {"energy_feedback_loss", Dim::force_per_width, "energy audit: removed by the feedback damping (J/m)"},
+      {"energy_residual", Dim::force_per_width, "energy audit: tool work minus every measured term: contact impacts, particle-grid mapping and time integration (J/m)"},
+      {"energy_residual_fraction", Dim::dimensionless, "|energy_residual| / energy_tool_work"},
       {"particles", Dim::dimensionless, "number of particles"},
       {"steps", Dim::dimensionless, "time steps"},
       {"dt", Dim::time, "time step"},
@@ -587,8 +641,19 @@ SolverSpec cutting_solver_spec() {
                    {"F_c", "N/m", "cutting force of the tool on the material per unit width"},
                    {"F_t", "N/m", "transverse force (positive pushing the material down)"},
                    {"F_nb", "N/m", "normal force on the tool's bottom (clearance) face"},
-                   {"tip_gap", "m", "crack-tip minus tool-tip x"},
-                   {"feedback_alpha", "1/s", "grid kinetic-energy feedback damping coefficient"}}}};
+                   {"tip_gap", "m", "gap from the tool tip to the first intact cohesive segment ahead of it"},
+                   {"feedback_alpha", "1/s", "grid kinetic-energy feedback damping coefficient"}}},
+                 {"energy",
+                  "energy audit at the output times (J/m): tool_work = kinetic + strain + plastic + cohesive + pic_damping + feedback_loss + residual",
+                  {{"t", "s", "time"},
+                   {"tool_work", "J/m", "work of the tool's contact impulses"},
+                   {"kinetic", "J/m", "kinetic energy of the material"},
+                   {"strain", "J/m", "stored elastic energy"},
+                   {"plastic", "J/m", "plastic work"},
+                   {"cohesive", "J/m", "work of the cohesive tractions"},
+                   {"pic_damping", "J/m", "removed by the PIC damping of the particle update"},
+                   {"feedback_loss", "J/m", "removed by the feedback damping"},
+                   {"residual", "J/m", "the balance's remainder: contact impacts, particle-grid mapping, time integration"}}}};
   spec.run = run_cutting;
   spec.checkpoints = true;
   spec.footprint = [](const Values& v) {

@@ -97,7 +97,10 @@ void MpmProblem::setup() {
   bscratch_.assign(np, 0);
   sscratch_.assign(np, 0);
   iscratch_.assign(np, 0);
-  lusl_.assign(cfg_.numerics.musl && cfg_.numerics.blend ? 4 * np : 0, 0.0);
+  const bool avg = cfg_.numerics.strain_update == Numerics::StrainUpdate::usavg;
+  for (auto* v : {&Lxx_, &Lxy_, &Lyx_, &Lyy_}) v->assign(avg ? np : 0, 0.0);
+  wp_.assign(np, 0.0);
+  thread_sum_.assign(static_cast<std::size_t>(nthreads_), 0.0);
 
   nodes_.assign(kFields * static_cast<std::size_t>(nn_), NodeData{});
   tbuf_.assign(static_cast<std::size_t>(nthreads_), std::vector<NodeData>(nodes_.size(), NodeData{}));
@@ -107,6 +110,7 @@ void MpmProblem::setup() {
   imp_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   imp_below_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   ke_.assign(static_cast<std::size_t>(nn_), 0.0);
+  node_audit_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   fixed_.assign(static_cast<std::size_t>(nn_), 0);
   cohesive_opening_.assign(static_cast<std::size_t>(nnx_), 1e30);
   if (cfg_.fixed_mask) {
@@ -138,6 +142,7 @@ void MpmProblem::setup() {
   }
   setup_done_ = true;
   if (cfg_.numerics.sort_interval > 0) sort_particles();
+  initial_energy_ = kinetic_energy() + strain_energy();
 }
 
 int MpmProblem::field_of(double xp, double yp, int side_p, double xi, double yi) const {
@@ -167,7 +172,7 @@ std::string MpmProblem::fault() const {
 }
 
 namespace {
-constexpr std::uint64_t kStateVersion = 1;
+constexpr std::uint64_t kStateVersion = 2;
 }  // namespace
 
 void MpmProblem::save_state(BinaryWriter& w) const {
@@ -177,7 +182,7 @@ void MpmProblem::save_state(BinaryWriter& w) const {
   w.u64(static_cast<std::uint64_t>(steps_));
   w.u64(static_cast<std::uint64_t>(frozen_count_));
   for (const auto* v : {&x_, &y_, &X0_, &Y0_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_,
-                        &bxx_, &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_}) {
+                        &bxx_, &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_}) {
     w.vec(*v);
   }
   for (const auto* v : {&rigid_, &side_, &frozen_}) w.pods(*v);
@@ -197,6 +202,7 @@ void MpmProblem::save_state(BinaryWriter& w) const {
   w.pods(std::vector<Eigen::Vector2d>{forces_.total, forces_.below, rigid_disp_});
   w.f64(forces_.normal_below);
   w.f64(alpha_fb_);
+  w.vec({audit_.tool_work, audit_.pic_damping, audit_.feedback_loss});
 }
 
 void MpmProblem::load_state(BinaryReader& r) {
@@ -212,7 +218,7 @@ void MpmProblem::load_state(BinaryReader& r) {
     return v;
   };
   for (auto* v : {&x_, &y_, &X0_, &Y0_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_, &bxx_,
-                  &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_}) {
+                  &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_}) {
     *v = sized(r.vec(), np, "a particle field");
   }
   for (auto* v : {&rigid_, &side_, &frozen_}) *v = sized(r.pods<std::uint8_t>(), np, "a particle flag");
@@ -236,6 +242,9 @@ void MpmProblem::load_state(BinaryReader& r) {
   rigid_disp_ = vecs[2];
   forces_.normal_below = r.f64();
   alpha_fb_ = r.f64();
+  const auto a = sized(r.vec(), 3, "the energy audit");
+  audit_ = EnergyAudit{a[0], a[1], a[2]};
+  extrapolated_ = false;  // the next step extrapolates the loaded particles afresh
 }
 
 bool MpmProblem::compute_shape(std::size_t p) {
@@ -267,7 +276,7 @@ bool MpmProblem::compute_shape(std::size_t p) {
   return true;
 }
 
-void MpmProblem::particles_to_grid() {
+void MpmProblem::particles_to_grid(bool with_forces) {
   const long np = static_cast<long>(x_.size());
   const Eigen::Vector2d grav = cfg_.gravity;
   const std::size_t nsz = nodes_.size();
@@ -339,6 +348,7 @@ void MpmProblem::particles_to_grid() {
           const double gy = wxa * dwyb;
           nd.px += ms * vx_[p];
           nd.py += ms * vy_[p];
+          if (!with_forces) continue;
           nd.fx += -(sxx * gx + sxy * gy) + ms * grav.x();
           nd.fy += -(sxy * gx + syy * gy) + ms * grav.y();
         }
@@ -391,19 +401,25 @@ void MpmProblem::for_point_nodes(const Eigen::Vector2d& pt, int side, F&& fn) co
   }
 }
 
-void MpmProblem::cohesive_forces() {
-  if (!cfg_.crack.enabled) return;
-  const auto& c = cfg_.crack;
-  const std::size_t ns = crack_.xc.size();
+void MpmProblem::update_crack_openings() {
   std::fill(cohesive_opening_.begin(), cohesive_opening_.end(), 1e30);
-  for (std::size_t k = 0; k < ns; ++k) {
-    const Eigen::Vector2d d = crack_.top[k] - crack_.bot[k];
+  for (std::size_t k = 0; k < crack_.xc.size(); ++k) {
     // opening seen by crack contact at the nearest node column
     const int col = static_cast<int>(std::lround((crack_.xc[k] - cfg_.grid.x0) / cfg_.grid.dx));
     if (col >= 0 && col < nnx_) {
       double& o = cohesive_opening_[static_cast<std::size_t>(col)];
-      o = std::min(o, d.y());
+      o = std::min(o, crack_.top[k].y() - crack_.bot[k].y());
     }
+  }
+}
+
+void MpmProblem::cohesive_forces() {
+  if (!cfg_.crack.enabled) return;
+  const auto& c = cfg_.crack;
+  const std::size_t ns = crack_.xc.size();
+  update_crack_openings();
+  for (std::size_t k = 0; k < ns; ++k) {
+    const Eigen::Vector2d d = crack_.top[k] - crack_.bot[k];
     CohesiveState& st = crack_.state[k];
     if (st.failed) continue;
     const CohesiveTraction t = cohesive_update(c.mode1, c.mode2, d.y(), d.x(), st);
@@ -496,6 +512,8 @@ void MpmProblem::grid_update() {
     const auto n = static_cast<std::size_t>(nl);
     Eigen::Vector2d vold[2], p[2];
     bool has[2];
+    const int fm = fixed_[n];
+    double dfb = 0.0;  // energy audit: work of the damping force at the extrapolated velocity
     for (int f = 0; f < 2; ++f) {
       NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
       has[f] = nd.m > mmin_;
@@ -507,13 +525,13 @@ void MpmProblem::grid_update() {
       }
       vold[f] = Eigen::Vector2d(nd.px, nd.py) / nd.m;
       p[f] = Eigen::Vector2d(nd.px + (nd.fx - alpha * nd.px) * dt, nd.py + (nd.fy - alpha * nd.py) * dt);
+      dfb += alpha * dt * (nd.px * nd.px + nd.py * nd.py) / nd.m;
     }
     Eigen::Vector2d imp, impb;
     resolve_contacts(n, p, has, V, imp, impb);
     imp_[n] = imp;
     imp_below_[n] = impb;
     // fixed nodes
-    const int fm = fixed_[n];
     double ke = 0.0;
     for (int f = 0; f < 2; ++f) {
       const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
@@ -536,17 +554,25 @@ void MpmProblem::grid_update() {
       ke += 0.5 * m * vnew_[k].squaredNorm();
     }
     ke_[n] = ke;
+    node_audit_[n] = Eigen::Vector2d(imp.dot(V), dfb);
   }
   // deterministic serial sums
   Eigen::Vector2d imp = Eigen::Vector2d::Zero(), impb = Eigen::Vector2d::Zero();
+  Eigen::Vector2d au = Eigen::Vector2d::Zero();
   double ke = 0.0;
   for (std::size_t n = 0; n < nnz; ++n) {
     imp += imp_[n];
     impb += imp_below_[n];
     ke += ke_[n];
+    au += node_audit_[n];
   }
-  forces_.total = imp / dt;
-  forces_.below = impb / dt;
+  audit_.tool_work += au[0];
+  audit_.feedback_loss += au[1];
+  // the momentum the tool's contact imposed over the step: here and on the extrapolated momenta
+  // at the step's start (USAVG), the paper's "summing the momentum changes imposed by the contact
+  // algorithm on the rigid tool"
+  forces_.total = (imp + imp_extrap_) / dt;
+  forces_.below = (impb + imp_extrap_below_) / dt;
   forces_.normal_below = -forces_.below.dot(ct.n_below);
   // feedback damping on grid kinetic energy
   const auto& fb = cfg_.damping;
@@ -558,8 +584,8 @@ void MpmProblem::grid_update() {
   }
 }
 
-void MpmProblem::update_strain(std::size_t p, const Eigen::Matrix2d& L) {
-  const Eigen::Matrix2d l = L * dt_;
+void MpmProblem::update_strain(std::size_t p, const Eigen::Matrix2d& L, double h) {
+  const Eigen::Matrix2d l = L * h;
   const double F00 = Fxx_[p], F01 = Fxy_[p], F10 = Fyx_[p], F11 = Fyy_[p];
   Fxx_[p] = F00 + l(0, 0) * F00 + l(0, 1) * F10;
   Fxy_[p] = F01 + l(0, 0) * F01 + l(0, 1) * F11;
@@ -569,7 +595,10 @@ void MpmProblem::update_strain(std::size_t p, const Eigen::Matrix2d& L) {
   J_[p] = J;
   double b[4] = {bxx_[p], bxy_[p], byy_[p], bzz_[p]};
   double tau[4];
+  const double alpha0 = alpha_[p];
   update_stress_plane_strain(cfg_.material, l, J, b, alpha_[p], tau);
+  // plastic work of the return (per reference volume): |s_{n+1}| dlambda = sigma_y(alpha_{n+1}) d alpha
+  if (alpha_[p] > alpha0) wp_[p] += vol0_[p] * (cfg_.material.sigma_y0 + cfg_.material.Ep * alpha_[p]) * (alpha_[p] - alpha0);
   bxx_[p] = b[0];
   bxy_[p] = b[1];
   byy_[p] = b[2];
@@ -606,11 +635,18 @@ void MpmProblem::grid_to_particles() {
   const double dt = dt_;
   const double beta = cfg_.numerics.pic_fraction;
   const int order = cfg_.numerics.position_order;
-  const bool musl = cfg_.numerics.musl;
-  const bool blend = musl && cfg_.numerics.blend;
+  const auto scheme = cfg_.numerics.strain_update;
   const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
   const auto nnz = static_cast<std::size_t>(nn_);
-#pragma omp parallel for schedule(static) num_threads(nthreads_)
+  std::fill(thread_sum_.begin(), thread_sum_.end(), 0.0);
+#pragma omp parallel num_threads(nthreads_)
+  {
+  int tid = 0;
+#ifdef _OPENMP
+  tid = omp_get_thread_num();
+#endif
+  double pic_damping = 0.0;
+#pragma omp for schedule(static)
   for (long pl = 0; pl < np; ++pl) {
     const auto p = static_cast<std::size_t>(pl);
     if (frozen_[p]) continue;
@@ -637,7 +673,9 @@ void MpmProblem::grid_to_particles() {
     }
     const Eigen::Vector2d vp(vx_[p], vy_[p]);
     const Eigen::Vector2d vgn = vg - ag * dt;  // v_{g->p}^{(n)}
-    const Eigen::Vector2d vnew = vp + ag * dt - beta * (vp - vgn);
+    const Eigen::Vector2d vflip = vp + ag * dt;
+    const Eigen::Vector2d vnew = vflip - beta * (vp - vgn);
+    pic_damping += 0.5 * mass_[p] * (vflip.squaredNorm() - vnew.squaredNorm());  // removed by the PIC part
     Eigen::Vector2d dx;
     if (order == 0) {
       dx = dt * vg;
@@ -650,18 +688,15 @@ void MpmProblem::grid_to_particles() {
     y_[p] += dx.y();
     vx_[p] = vnew.x();
     vy_[p] = vnew.y();
-    if (!musl) {  // USL: gradient of the updated grid velocities
-      update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vnew_, idx));
-    } else if (blend) {  // keep the USL gradient for the blended update below
-      const Eigen::Matrix2d L = velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vnew_, idx);
-      lusl_[4 * p] = L(0, 0);
-      lusl_[4 * p + 1] = L(0, 1);
-      lusl_[4 * p + 2] = L(1, 0);
-      lusl_[4 * p + 3] = L(1, 1);
+    if (scheme == Numerics::StrainUpdate::usl) {  // gradient of the updated grid velocities
+      update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vnew_, idx), dt);
     }
   }
+  thread_sum_[static_cast<std::size_t>(tid)] = pic_damping;
+  }
+  for (double e : thread_sum_) audit_.pic_damping += e;
   rigid_disp_ += V * dt;
-  if (!musl) return;
+  if (scheme != Numerics::StrainUpdate::musl) return;
   remap_momenta();
 #pragma omp parallel for schedule(static) num_threads(nthreads_)
   for (long pl = 0; pl < np; ++pl) {
@@ -671,14 +706,7 @@ void MpmProblem::grid_to_particles() {
       return fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz +
              static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_);
     };
-    Eigen::Matrix2d L = velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vstrain_, idx);
-    if (blend) {
-      L(0, 0) = 0.5 * (L(0, 0) + lusl_[4 * p]);
-      L(0, 1) = 0.5 * (L(0, 1) + lusl_[4 * p + 1]);
-      L(1, 0) = 0.5 * (L(1, 0) + lusl_[4 * p + 2]);
-      L(1, 1) = 0.5 * (L(1, 1) + lusl_[4 * p + 3]);
-    }
-    update_strain(p, L);
+    update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vstrain_, idx), dt);
   }
 }
 
@@ -774,16 +802,155 @@ void MpmProblem::move_crack_surfaces() {
   }
 }
 
+void MpmProblem::constrain_extrapolated(bool count, double t) {
+  if (cfg_.crack.enabled) update_crack_openings();
+  const Eigen::Vector2d V = cfg_.tool.at(t);
+  const auto nnz = static_cast<std::size_t>(nn_);
+#pragma omp parallel for schedule(static) num_threads(nthreads_)
+  for (long nl = 0; nl < nn_; ++nl) {
+    const auto n = static_cast<std::size_t>(nl);
+    Eigen::Vector2d pm[2], imp, impb;
+    bool has[2];
+    for (int f = 0; f < 2; ++f) {
+      const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
+      has[f] = nd.m > mmin_;
+      pm[f] = has[f] ? Eigen::Vector2d(nd.px, nd.py) : Eigen::Vector2d::Zero();
+    }
+    resolve_contacts(n, pm, has, V, imp, impb);
+    const int fm = fixed_[n];
+    for (int f = 0; f < 2; ++f) {
+      const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
+      if (!has[f]) {
+        vstrain_[k].setZero();
+        continue;
+      }
+      if (fm & 1) pm[f].x() = 0.0;
+      if (fm & 2) pm[f].y() = 0.0;
+      nodes_[k].px = pm[f].x();
+      nodes_[k].py = pm[f].y();
+      vstrain_[k] = pm[f] / nodes_[k].m;
+    }
+    node_audit_[n] = Eigen::Vector2d(imp.dot(V), 0.0);
+    imp_[n] = imp;
+    imp_below_[n] = impb;
+  }
+  Eigen::Vector2d au = Eigen::Vector2d::Zero();
+  imp_extrap_.setZero();
+  imp_extrap_below_.setZero();
+  for (std::size_t n = 0; n < nnz; ++n) {
+    au += node_audit_[n];
+    imp_extrap_ += imp_[n];
+    imp_extrap_below_ += imp_below_[n];
+  }
+  if (count) audit_.tool_work += au[0];
+  const long np = static_cast<long>(x_.size());
+#pragma omp parallel for schedule(static) num_threads(nthreads_)
+  for (long pl = 0; pl < np; ++pl) {
+    const auto p = static_cast<std::size_t>(pl);
+    if (frozen_[p] || rigid_[p]) continue;
+    auto idx = [&](int a, int b) {
+      return fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * nnz +
+             static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_);
+    };
+    const Eigen::Matrix2d L = velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vstrain_, idx);
+    Lxx_[p] = L(0, 0);
+    Lxy_[p] = L(0, 1);
+    Lyx_[p] = L(1, 0);
+    Lyy_[p] = L(1, 1);
+  }
+}
+
+void MpmProblem::usavg_half(bool first) {
+  const long np = static_cast<long>(x_.size());
+  const double h = 0.5 * dt_;
+  if (!first) {
+#pragma omp parallel for schedule(static) num_threads(nthreads_)
+    for (long pl = 0; pl < np; ++pl) {
+      const auto p = static_cast<std::size_t>(pl);
+      if (frozen_[p] || rigid_[p]) continue;
+      Eigen::Matrix2d L;
+      L << Lxx_[p], Lxy_[p], Lyx_[p], Lyy_[p];
+      update_strain(p, L, h);
+    }
+    return;
+  }
+  // the first half, then the grid forces from the stresses after it
+  const Eigen::Vector2d grav = cfg_.gravity;
+  const std::size_t nfield = 2 * static_cast<std::size_t>(nn_);
+#pragma omp parallel num_threads(nthreads_)
+  {
+    int tid = 0;
+#ifdef _OPENMP
+    tid = omp_get_thread_num();
+#endif
+    std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
+    for (std::size_t i = 0; i < nfield; ++i) buf[i].fx = buf[i].fy = 0.0;
+#pragma omp for schedule(static)
+    for (long pl = 0; pl < np; ++pl) {
+      const auto p = static_cast<std::size_t>(pl);
+      if (frozen_[p] || rigid_[p]) continue;
+      Eigen::Matrix2d L;
+      L << Lxx_[p], Lxy_[p], Lyx_[p], Lyy_[p];
+      update_strain(p, L, h);
+      const double m = mass_[p], v0 = vol0_[p];
+      const double sxx = txx_[p] * v0, sxy = txy_[p] * v0, syy = tyy_[p] * v0;
+      for (int b = 0; b < 3; ++b) {
+        const double wyb = wy_[3 * p + static_cast<std::size_t>(b)];
+        const double dwyb = dwy_[3 * p + static_cast<std::size_t>(b)];
+        for (int a = 0; a < 3; ++a) {
+          const double wxa = wx_[3 * p + static_cast<std::size_t>(a)];
+          const double sh = wxa * wyb;
+          if (sh <= 0.0) continue;
+          NodeData& nd = buf[fid_[9 * p + static_cast<std::size_t>(a + 3 * b)] * static_cast<std::size_t>(nn_) +
+                             static_cast<std::size_t>((i0_[p] + a) + (j0_[p] + b) * nnx_)];
+          const double gx = dwx_[3 * p + static_cast<std::size_t>(a)] * wyb;
+          const double gy = wxa * dwyb;
+          nd.fx += -(sxx * gx + sxy * gy) + m * sh * grav.x();
+          nd.fy += -(sxy * gx + syy * gy) + m * sh * grav.y();
+        }
+      }
+    }
+#pragma omp for schedule(static)
+    for (long il = 0; il < static_cast<long>(nfield); ++il) {
+      const auto i = static_cast<std::size_t>(il);
+      double fx = tbuf_[0][i].fx, fy = tbuf_[0][i].fy;
+      for (std::size_t t = 1; t < tbuf_.size(); ++t) {
+        fx += tbuf_[t][i].fx;
+        fy += tbuf_[t][i].fy;
+      }
+      nodes_[i].fx = fx;
+      nodes_[i].fy = fy;
+    }
+  }
+}
+
 void MpmProblem::step() {
   if (!setup_done_) setup();
   if (cfg_.numerics.sort_interval > 0 && steps_ > 0 && steps_ % cfg_.numerics.sort_interval == 0) {
     sort_particles();
+    extrapolated_ = false;  // redone in the new particle order
   }
-  particles_to_grid();  // computes the shape functions too
+  const bool avg = cfg_.numerics.strain_update == Numerics::StrainUpdate::usavg;
+  if (!avg) {
+    particles_to_grid(true);  // computes the shape functions too
+  } else {
+    if (!extrapolated_) {  // the first step; else a redo of the last step's extrapolation (counted there)
+      const bool count = steps_ == 0;
+      particles_to_grid(false);
+      constrain_extrapolated(count, time_);
+    }
+    usavg_half(true);
+  }
   cohesive_forces();
   grid_update();
   grid_to_particles();
   move_crack_surfaces();
+  if (avg) {  // strain last: the updated particles extrapolated at their new positions
+    particles_to_grid(false);
+    constrain_extrapolated(true, time_ + dt_);
+    usavg_half(false);
+    extrapolated_ = true;
+  }
   time_ += dt_;
   ++steps_;
 }
@@ -811,7 +978,7 @@ void MpmProblem::sort_particles() {
     v.swap(bscratch_);
   };
   for (auto* v : {&x_, &y_, &X0_, &Y0_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_, &bxx_, &bxy_,
-                  &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_}) {
+                  &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_}) {
     apply_d(*v);
   }
   for (auto* v : {&rigid_, &side_, &frozen_}) apply_b(*v);
@@ -849,7 +1016,13 @@ Eigen::Vector2d MpmProblem::momentum() const {
 
 Eigen::Vector2d MpmProblem::grid_momentum() const {
   Eigen::Vector2d m = Eigen::Vector2d::Zero();
-  for (std::size_t k = 0; k < 2 * static_cast<std::size_t>(nn_); ++k) m += nodes_[k].m * vnew_[k];
+  for (std::size_t k = 0; k < 2 * static_cast<std::size_t>(nn_); ++k) {
+    if (!extrapolated_) {
+      m += nodes_[k].m * vnew_[k];
+    } else if (nodes_[k].m > mmin_) {  // USAVG: the grid holds the strain-last extrapolation
+      m += Eigen::Vector2d(nodes_[k].px, nodes_[k].py);
+    }
+  }
   return m;
 }
 
@@ -865,11 +1038,17 @@ Eigen::Matrix3d MpmProblem::cauchy_stress(std::size_t p) const {
   return s / J_[p];
 }
 
-double MpmProblem::crack_tip_x() const {
+double MpmProblem::crack_tip_x(double x_from) const {
   for (std::size_t k = 0; k < crack_.xc.size(); ++k) {
-    if (!crack_.state[k].failed) return crack_.xc[k];
+    if (!crack_.state[k].failed && crack_.xc[k] >= x_from) return crack_.xc[k];
   }
   return cfg_.crack.x_end;
+}
+
+std::size_t MpmProblem::intact_segments_behind(double x) const {
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < crack_.xc.size(); ++k) n += !crack_.state[k].failed && crack_.xc[k] < x ? 1 : 0;
+  return n;
 }
 
 double MpmProblem::released_energy() const {
@@ -878,6 +1057,47 @@ double MpmProblem::released_energy() const {
     if (crack_.state[k].failed && !crack_.free[k]) e += (crack_.state[k].JI + crack_.state[k].JII) * cfg_.crack.seg_len;
   }
   return e;
+}
+
+double MpmProblem::cohesive_energy() const {
+  const auto& c = cfg_.crack;
+  double e = 0.0;
+  for (std::size_t k = 0; k < crack_.xc.size(); ++k) {
+    if (crack_.free[k]) continue;
+    const CohesiveState& st = crack_.state[k];
+    if (st.failed) {
+      e += (st.JI + st.JII) * c.seg_len;
+      continue;
+    }
+    // intact: dissipated (area to the largest opening less the secant's triangle) plus the
+    // energy held at the present opening on the secant
+    const Eigen::Vector2d d = crack_.top[k] - crack_.bot[k];
+    auto part = [](const TractionLaw& law, double dmax, double now) {
+      if (dmax <= 0.0) return 0.0;
+      const double held = 0.5 * law.traction(now, dmax) * now;
+      return law.area(dmax) - 0.5 * law.envelope(dmax) * dmax + held;
+    };
+    e += (part(c.mode1, st.dn_max, std::max(0.0, d.y())) + part(c.mode2, st.dt_max, std::fabs(d.x()))) * c.seg_len;
+  }
+  return e;
+}
+
+double MpmProblem::plastic_work() const {
+  double e = 0.0;
+  for (std::size_t p = 0; p < x_.size(); ++p) e += wp_[p];
+  return e;
+}
+
+EnergyBalance MpmProblem::energy_balance() const {
+  EnergyBalance b;
+  b.audit = audit_;
+  b.kinetic = kinetic_energy();
+  b.strain = strain_energy();
+  b.plastic = plastic_work();
+  b.cohesive = cohesive_energy();
+  b.residual = initial_energy_ + audit_.tool_work -
+               (b.kinetic + b.strain + b.plastic + b.cohesive + audit_.pic_damping + audit_.feedback_loss);
+  return b;
 }
 
 double MpmProblem::mode1_fraction() const {

@@ -16,7 +16,7 @@ struct CuttingSetup {
   double h = 0.9e-3;                 // depth of cut, m
   double rake = 10.0 * M_PI / 180.0;  // rake angle alpha, rad
   double clearance = 5.0 * M_PI / 180.0;
-  double width_factor = 30.0, precrack_factor = 18.0, base_factor = 3.0, free_crack_factor = 2.0;
+  double width_factor = 30.0, precrack_factor = 26.0, base_factor = 3.0, free_crack_factor = 2.0;
   double tool_height_factor = 4.0, tool_length_factor = 4.0;
   double chip_room_factor = 12.0;    // grid height above the cut plane, in h
   double particles_through_chip = 15.0;

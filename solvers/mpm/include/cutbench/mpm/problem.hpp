@@ -14,6 +14,7 @@
 #include <Eigen/Dense>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,16 +33,21 @@ struct GridSpec {
 struct Numerics {
   double pic_fraction = 1.0;  // PIC damping fraction: 1 = pure PIC (default), 0 = pure FLIP
   int position_order = 2;     // 0: x += dt v_g(n+1); 1: adds the PIC term; 2: full Eq. 10
-  // Strain update: false = USL (L from the updated grid velocities); true = MUSL (the updated
-  // particle momenta are re-extrapolated to the grid with the same shape functions, contact and
-  // boundary conditions re-applied, and L taken from those velocities: NairnMPM's strain-last).
-  bool musl = false;
-  // Experimental (with musl = true): L = (L_USL + L_MUSL)/2, half from the updated grid velocities
-  // and half from the re-extrapolated momenta. Not NairnMPM's USAVG (which splits the step into a
-  // strain-first and a strain-last half); used to bracket the touching/bending transition.
-  bool blend = false;
-  // Diagnostic (with musl = true): false skips the contact re-applied to the re-extrapolated
-  // momenta (boundary conditions are still applied), to separate MUSL's two ingredients.
+  // When the particle strains (and so the stresses) are updated from the grid velocities:
+  //   usl:   after the grid update, from the updated grid velocities (update stress last);
+  //   musl:  after the particle update, from the updated particle momenta re-extrapolated to the
+  //          grid with the step's shape functions, contact and boundary conditions re-applied;
+  //   usavg: NairnMPM's default scheme (USAVG): half the step's strain increment first, from the
+  //          momenta extrapolated to the grid (tool and crack contact and boundary conditions
+  //          applied to them) before the grid forces are found, and half last, from the updated
+  //          particle momenta re-extrapolated at the particles' new positions (contact and
+  //          boundary conditions applied). The two halves are NairnMPM's UpdateStrainsFirst and
+  //          UpdateStrainsLastContact tasks with dt/2 each.
+  // usl and musl apply no contact to the extrapolated momenta before the grid update.
+  enum class StrainUpdate { usl = 0, musl = 1, usavg = 2 };
+  StrainUpdate strain_update = StrainUpdate::usavg;
+  // Diagnostic (musl): false skips the contact re-applied to the re-extrapolated momenta
+  // (boundary conditions are still applied), to separate MUSL's two ingredients.
   bool musl_recontact = true;
   double cfl = 0.4;           // dt = cfl * dx / c_p
   int sort_interval = 50;     // steps between particle sorts by cell (0 = never)
@@ -114,6 +120,29 @@ struct ContactForces {
   double normal_below = 0.0;        // compressive normal force on that part (along -n_below)
 };
 
+// The energy audit of a run, J per m of width, accumulated over the steps (save_state carries
+// them). Every term is measured on particles or as momentum times a bounded velocity, never as a
+// grid kinetic energy p^2/2m (unbounded at nodes that hold a sliver of a particle):
+//   tool_work      sum of dp . V_tool over every contact impulse of the tool on the material;
+//   pic_damping    kinetic energy the PIC part of the particle update removes: per particle
+//                  m/2 (|v_FLIP|^2 - |v_new|^2), v_FLIP = v_p + a dt, v_new = v_FLIP - beta (v_p - v_g);
+//   feedback_loss  work of the feedback damping force alpha p at the extrapolated velocity.
+// Balance (energy_balance()): initial energy + tool_work = kinetic + strain + plastic + cohesive +
+// pic_damping + feedback_loss + residual. The residual holds what no term measures: the inelastic
+// nodal impacts of the contact, the particle-grid mapping and the time integration.
+struct EnergyAudit {
+  double tool_work = 0.0, pic_damping = 0.0, feedback_loss = 0.0;
+};
+
+struct EnergyBalance {
+  EnergyAudit audit;
+  double kinetic = 0.0;   // deformable particles
+  double strain = 0.0;    // stored elastic energy
+  double plastic = 0.0;   // plastic work (dissipated, hardening included)
+  double cohesive = 0.0;  // work of the cohesive tractions (failed segments: J_I + J_II; intact: to the present opening)
+  double residual = 0.0;  // initial energy + tool_work minus every other term
+};
+
 struct CrackSurface {
   std::vector<double> xc;           // segment centre (reference), m
   std::vector<Eigen::Vector2d> top, bot;  // tracked surface points
@@ -143,13 +172,18 @@ public:
   double kinetic_energy() const;   // deformable particles
   double strain_energy() const;    // deformable particles, sum of V0 W
   Eigen::Vector2d momentum() const;       // deformable particles
-  Eigen::Vector2d grid_momentum() const;  // deformable fields on the grid after the last step
+  Eigen::Vector2d grid_momentum() const;  // deformable fields on the grid after the last step (USAVG: its strain-last extrapolation)
   Eigen::Vector2d rigid_displacement() const { return rigid_disp_; }
   double feedback_alpha() const { return alpha_fb_; }
   const CrackSurface& crack() const { return crack_; }
-  double crack_tip_x() const;       // centre of the first intact cohesive segment (x_end if none)
+  // centre of the first intact cohesive segment at or beyond x_from (x_end if none)
+  double crack_tip_x(double x_from = -std::numeric_limits<double>::infinity()) const;
+  std::size_t intact_segments_behind(double x) const;  // intact cohesive segments with centre below x
   double released_energy() const;   // J/m, sum over failed segments of (J_I + J_II) * length
   double mode1_fraction() const;    // sum J_I len / sum (J_I + J_II) len over failed segments
+  double cohesive_energy() const;   // J/m, work done on the cohesive segments so far (EnergyBalance)
+  double plastic_work() const;      // J/m, deformable particles
+  EnergyBalance energy_balance() const;
   // Empty while the state is sound; else what went wrong, naming the particle: a non-finite
   // position, velocity or stress, or a particle that left the grid (a blow-up).
   std::string fault() const;
@@ -175,11 +209,13 @@ public:
   double plastic_strain(std::size_t p) const { return alpha_[p]; }
   double jacobian(std::size_t p) const { return J_[p]; }
 
-  // Test hooks: set a particle's velocity (by current index) before or between steps.
+  // Test hook (fault injection): set a particle's velocity (by current index) between steps.
   void set_velocity(std::size_t p, double vx, double vy) {
     vx_[p] = vx;
     vy_[p] = vy;
+    extrapolated_ = false;
   }
+
 
 private:
   struct NodeData {
@@ -188,12 +224,22 @@ private:
   };
   int field_of(double xp, double yp, int side_p, double xi, double yi) const;
   bool compute_shape(std::size_t p);  // false: particle frozen (off the grid)
-  void particles_to_grid();
+  // Mass, momentum and the rigid body's data (and, with_forces, the grid forces) from the particles.
+  void particles_to_grid(bool with_forces);
+  // USAVG: contact (the tool at its velocity at time t) and boundary conditions on the
+  // extrapolated momenta (in place), the strain velocities vstrain_ and each particle's velocity
+  // gradient (L*_); `count` adds the contact to the energy audit (false where the same
+  // extrapolation is being redone).
+  void constrain_extrapolated(bool count, double t);
+  // USAVG: the strain half-step from the cached velocity gradients and, first = true, the grid
+  // forces from the stresses after it.
+  void usavg_half(bool first);
+  void update_crack_openings();  // per node column, for crack contact
   void cohesive_forces();
   void grid_update();
   void grid_to_particles();
   void remap_momenta();  // MUSL: particle momenta -> grid -> contact/BCs -> vstrain_
-  void update_strain(std::size_t p, const Eigen::Matrix2d& L);
+  void update_strain(std::size_t p, const Eigen::Matrix2d& L, double h);  // over a time h
   void resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const bool has[2], const Eigen::Vector2d& V,
                         Eigen::Vector2d& imp, Eigen::Vector2d& impb) const;
   void move_crack_surfaces();
@@ -218,7 +264,8 @@ private:
   std::vector<double> Fxx_, Fxy_, Fyx_, Fyy_;
   std::vector<double> bxx_, bxy_, byy_, bzz_;  // isochoric elastic left Cauchy-Green
   std::vector<double> txx_, txy_, tyy_, tzz_;  // Kirchhoff stress
-  std::vector<double> lusl_;                   // per-step scratch: USL velocity gradient (blend)
+  std::vector<double> wp_;                     // plastic work per particle, J/m
+  std::vector<double> Lxx_, Lxy_, Lyx_, Lyy_;  // USAVG: the velocity gradient of the extrapolation
   std::vector<std::uint8_t> rigid_, side_, frozen_;
   std::vector<std::size_t> id_;
   // shape cache: base nodes, 1D weights and derivatives, field of each of the 9 nodes
@@ -239,6 +286,8 @@ private:
   std::vector<int> fixed_;
   std::vector<Eigen::Vector2d> imp_, imp_below_;
   std::vector<double> ke_;
+  std::vector<Eigen::Vector2d> node_audit_;  // per node: tool work, feedback damping work
+  std::vector<double> thread_sum_;           // per-thread partial sums (deterministic order)
   std::vector<double> cohesive_opening_;  // per node column: normal opening of nearest segment
 
   CrackSurface crack_;
@@ -246,6 +295,10 @@ private:
   Eigen::Vector2d rigid_disp_{0.0, 0.0};
   double alpha_fb_ = 0.0;
   double mass_deformable_ = 0.0;
+  EnergyAudit audit_;
+  Eigen::Vector2d imp_extrap_{0.0, 0.0}, imp_extrap_below_{0.0, 0.0};  // USAVG: contact on the extrapolated momenta
+  double initial_energy_ = 0.0;  // kinetic + strain energy at setup (the balance starts from it)       // grid kinetic energy after the last grid update
+  bool extrapolated_ = false;  // USAVG: nodes_, vstrain_ and L*_ hold the extrapolation of the current particles
 };
 
 }  // namespace cutbench::mpm

@@ -103,7 +103,11 @@ double update_stress_plane_strain(const HyperelasticJ2& mat, const Eigen::Matrix
 }
 
 double strain_energy_density(const HyperelasticJ2& mat, const Eigen::Matrix3d& be_bar, double J) {
-  return 0.5 * mat.G * (be_bar.trace() - 3.0) + 0.5 * mat.K * (0.5 * (J * J - 1.0) - std::log(J));
+  // the isochoric invariant tr(be_bar) / det(be_bar)^(1/3): the return mapping keeps the deviator of
+  // be_bar exact but lets its determinant drift from 1 with plastic flow (Simo & Hughes 1998,
+  // box 9.1), and tr(be_bar) - 3 would count that drift as stored energy
+  const double i1 = be_bar.trace() / std::cbrt(be_bar.determinant());
+  return 0.5 * mat.G * (i1 - 3.0) + 0.5 * mat.K * (0.5 * (J * J - 1.0) - std::log(J));
 }
 
 double von_mises(const Eigen::Matrix3d& sigma) {

@@ -27,6 +27,8 @@ MpmProblem::MpmProblem(MpmConfig cfg) : cfg_(std::move(cfg)) {
   nny_ = g.ny + 1;
   nn_ = nnx_ * nny_;
   lp_ = 0.25 * g.dx;
+  ugx_ = UgimpGrid(g.x0, g.dx, lp_);
+  ugy_ = UgimpGrid(g.y0, g.dx, lp_);
 }
 
 void MpmProblem::add_particle(double x, double y, double volume, bool rigid, double vx, double vy) {
@@ -202,7 +204,7 @@ void MpmProblem::save_state(BinaryWriter& w) const {
   w.pods(std::vector<Eigen::Vector2d>{forces_.total, forces_.below, rigid_disp_});
   w.f64(forces_.normal_below);
   w.f64(alpha_fb_);
-  w.vec({audit_.tool_work, audit_.pic_damping, audit_.feedback_loss});
+  w.vec({audit_.tool_work, audit_.pic_damping, audit_.feedback_loss, audit_.extrapolation_loss});
 }
 
 void MpmProblem::load_state(BinaryReader& r) {
@@ -242,8 +244,8 @@ void MpmProblem::load_state(BinaryReader& r) {
   rigid_disp_ = vecs[2];
   forces_.normal_below = r.f64();
   alpha_fb_ = r.f64();
-  const auto a = sized(r.vec(), 3, "the energy audit");
-  audit_ = EnergyAudit{a[0], a[1], a[2]};
+  const auto a = sized(r.vec(), 4, "the energy audit");
+  audit_ = EnergyAudit{a[0], a[1], a[2], a[3]};
   extrapolated_ = false;  // the next step extrapolates the loaded particles afresh
 }
 
@@ -251,8 +253,8 @@ bool MpmProblem::compute_shape(std::size_t p) {
   const auto& g = cfg_.grid;
   const bool crack = cfg_.crack.enabled;
   if (frozen_[p]) return false;
-  const int i0 = ugimp_axis(x_[p], g.x0, g.dx, lp_, &wx_[3 * p], &dwx_[3 * p]);
-  const int j0 = ugimp_axis(y_[p], g.y0, g.dx, lp_, &wy_[3 * p], &dwy_[3 * p]);
+  const int i0 = ugimp_axis(x_[p], ugx_, &wx_[3 * p], &dwx_[3 * p]);
+  const int j0 = ugimp_axis(y_[p], ugy_, &wy_[3 * p], &dwy_[3 * p]);
   if (i0 < 0 || j0 < 0 || i0 + 2 > g.nx || j0 + 2 > g.ny || !std::isfinite(x_[p]) || !std::isfinite(y_[p])) {
     frozen_[p] = 1;  // left the grid: it stops interacting (reported by frozen())
     return false;
@@ -276,8 +278,9 @@ bool MpmProblem::compute_shape(std::size_t p) {
   return true;
 }
 
-void MpmProblem::particles_to_grid(bool with_forces) {
+void MpmProblem::particles_to_grid(bool with_forces, bool count) {
   const long np = static_cast<long>(x_.size());
+  std::fill(thread_sum_.begin(), thread_sum_.end(), 0.0);
   const Eigen::Vector2d grav = cfg_.gravity;
   const std::size_t nsz = nodes_.size();
   const bool ext = cfg_.contact.detection == 2;
@@ -291,6 +294,7 @@ void MpmProblem::particles_to_grid(bool with_forces) {
 #endif
     std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
     std::fill(buf.begin(), buf.end(), NodeData{});
+    double ke_particles = 0.0;
     if (ext) {  // max for material fields, min for the rigid field
       for (std::size_t i = 0; i < nsz; ++i) {
         const bool rig_field = i >= 2 * static_cast<std::size_t>(nn_);
@@ -306,6 +310,7 @@ void MpmProblem::particles_to_grid(bool with_forces) {
       }
       const double m = mass_[p];
       const bool rig = rigid_[p] != 0;
+      if (!rig) ke_particles += 0.5 * m * (vx_[p] * vx_[p] + vy_[p] * vy_[p]);
       const double v0 = vol0_[p];
       const double sxx = txx_[p] * v0, sxy = txy_[p] * v0, syy = tyy_[p] * v0;
       // domain extents along the contact normals: far edge of material, near edges of the tool
@@ -354,6 +359,7 @@ void MpmProblem::particles_to_grid(bool with_forces) {
         }
       }
     }
+    thread_sum_[static_cast<std::size_t>(tid)] = ke_particles;
     // implicit barrier; reduce buffers in fixed thread order
 #pragma omp for schedule(static)
     for (long il = 0; il < static_cast<long>(nsz); ++il) {
@@ -378,14 +384,25 @@ void MpmProblem::particles_to_grid(bool with_forces) {
     }
   }
   frozen_count_ = frozen;
+  if (!count) return;
+  // the kinetic energy the extrapolation loses: particle minus nodal kinetic energy (never
+  // negative: a node's velocity is the mass-weighted mean of its particles'; nodes lighter than
+  // mmin_, dropped by the grid update, count as lost)
+  double ke_p = 0.0, ke_g = 0.0;
+  for (double e : thread_sum_) ke_p += e;
+  for (std::size_t k = 0; k < 2 * static_cast<std::size_t>(nn_); ++k) {
+    const NodeData& nd = nodes_[k];
+    if (nd.m > mmin_) ke_g += 0.5 * (nd.px * nd.px + nd.py * nd.py) / nd.m;
+  }
+  audit_.extrapolation_loss += ke_p - ke_g;
 }
 
 template <class F>
 void MpmProblem::for_point_nodes(const Eigen::Vector2d& pt, int side, F&& fn) const {
   const auto& g = cfg_.grid;
   double wx[3], wy[3], dwx[3], dwy[3];
-  const int i0 = ugimp_axis(pt.x(), g.x0, g.dx, lp_, wx, dwx);
-  const int j0 = ugimp_axis(pt.y(), g.y0, g.dx, lp_, wy, dwy);
+  const int i0 = ugimp_axis(pt.x(), ugx_, wx, dwx);
+  const int j0 = ugimp_axis(pt.y(), ugy_, wy, dwy);
   if (i0 < 0 || j0 < 0 || i0 + 2 > g.nx || j0 + 2 > g.ny) return;
   for (int b = 0; b < 3; ++b) {
     for (int a = 0; a < 3; ++a) {
@@ -936,7 +953,7 @@ void MpmProblem::step() {
   } else {
     if (!extrapolated_) {  // the first step; else a redo of the last step's extrapolation (counted there)
       const bool count = steps_ == 0;
-      particles_to_grid(false);
+      particles_to_grid(false, count);
       constrain_extrapolated(count, time_);
     }
     usavg_half(true);
@@ -1096,7 +1113,8 @@ EnergyBalance MpmProblem::energy_balance() const {
   b.plastic = plastic_work();
   b.cohesive = cohesive_energy();
   b.residual = initial_energy_ + audit_.tool_work -
-               (b.kinetic + b.strain + b.plastic + b.cohesive + audit_.pic_damping + audit_.feedback_loss);
+               (b.kinetic + b.strain + b.plastic + b.cohesive + audit_.pic_damping + audit_.feedback_loss +
+                audit_.extrapolation_loss);
   return b;
 }
 

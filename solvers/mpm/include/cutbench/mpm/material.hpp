@@ -41,7 +41,8 @@ Eigen::Matrix3d update_stress(const HyperelasticJ2& mat, const Eigen::Matrix3d& 
 double update_stress_plane_strain(const HyperelasticJ2& mat, const Eigen::Matrix2d& l, double J, double b[4],
                                   double& alpha, double tau[4]);
 
-// Stored elastic energy per reference volume, W = G/2 (tr be_bar - 3) + K/2 ((J^2-1)/2 - ln J).
+// Stored elastic energy per reference volume, W = G/2 (I1 - 3) + K/2 ((J^2-1)/2 - ln J) with the
+// isochoric invariant I1 = tr be_bar / det(be_bar)^(1/3) (= tr be_bar while det be_bar = 1).
 double strain_energy_density(const HyperelasticJ2& mat, const Eigen::Matrix3d& be_bar, double J);
 
 // von Mises equivalent stress sqrt(3/2)|dev s| of a (Cauchy) stress tensor.

@@ -21,6 +21,7 @@
 #include "cutbench/common/binary_io.hpp"
 #include "cutbench/mpm/cohesive.hpp"
 #include "cutbench/mpm/material.hpp"
+#include "cutbench/mpm/shape.hpp"
 
 namespace cutbench::mpm {
 
@@ -44,8 +45,10 @@ struct Numerics {
   //          boundary conditions applied). The two halves are NairnMPM's UpdateStrainsFirst and
   //          UpdateStrainsLastContact tasks with dt/2 each.
   // usl and musl apply no contact to the extrapolated momenta before the grid update.
+  // Default USL: in this solver USAVG and MUSL reverse the transverse force and multiply the
+  // rubbing force in cutting (benchmarks/nairn2015/FINDINGS.md F14).
   enum class StrainUpdate { usl = 0, musl = 1, usavg = 2 };
-  StrainUpdate strain_update = StrainUpdate::usavg;
+  StrainUpdate strain_update = StrainUpdate::usl;
   // Diagnostic (musl): false skips the contact re-applied to the re-extrapolated momenta
   // (boundary conditions are still applied), to separate MUSL's two ingredients.
   bool musl_recontact = true;
@@ -126,12 +129,14 @@ struct ContactForces {
 //   tool_work      sum of dp . V_tool over every contact impulse of the tool on the material;
 //   pic_damping    kinetic energy the PIC part of the particle update removes: per particle
 //                  m/2 (|v_FLIP|^2 - |v_new|^2), v_FLIP = v_p + a dt, v_new = v_FLIP - beta (v_p - v_g);
-//   feedback_loss  work of the feedback damping force alpha p at the extrapolated velocity.
+//   feedback_loss  work of the feedback damping force alpha p at the extrapolated velocity;
+//   extrapolation_loss  particle minus nodal kinetic energy at each extrapolation to the grid
+//                  (>= 0: a nodal velocity is the mass-weighted mean of its particles').
 // Balance (energy_balance()): initial energy + tool_work = kinetic + strain + plastic + cohesive +
-// pic_damping + feedback_loss + residual. The residual holds what no term measures: the inelastic
-// nodal impacts of the contact, the particle-grid mapping and the time integration.
+// pic_damping + feedback_loss + extrapolation_loss + residual. The residual holds what no term
+// measures: the inelastic nodal impacts of the contact and the time integration.
 struct EnergyAudit {
-  double tool_work = 0.0, pic_damping = 0.0, feedback_loss = 0.0;
+  double tool_work = 0.0, pic_damping = 0.0, feedback_loss = 0.0, extrapolation_loss = 0.0;
 };
 
 struct EnergyBalance {
@@ -225,7 +230,7 @@ private:
   int field_of(double xp, double yp, int side_p, double xi, double yi) const;
   bool compute_shape(std::size_t p);  // false: particle frozen (off the grid)
   // Mass, momentum and the rigid body's data (and, with_forces, the grid forces) from the particles.
-  void particles_to_grid(bool with_forces);
+  void particles_to_grid(bool with_forces, bool count = true);  // count: add to the energy audit
   // USAVG: contact (the tool at its velocity at time t) and boundary conditions on the
   // extrapolated momenta (in place), the strain velocities vstrain_ and each particle's velocity
   // gradient (L*_); `count` adds the contact to the energy audit (false where the same
@@ -251,6 +256,7 @@ private:
   MpmConfig cfg_;
   int nnx_ = 0, nny_ = 0, nn_ = 0;  // nodes per row/column, total
   double lp_ = 0.0;
+  UgimpGrid ugx_, ugy_;  // shape-function constants of the two axes
   double dt_ = 0.0, time_ = 0.0;
   long steps_ = 0;
   int nthreads_ = 1;

@@ -3,7 +3,7 @@
 # thread each (two campaigns side by side use the two cores without oversubscribing them). Runs
 # already stored are skipped and a run with a checkpoint there resumes, so the script can be
 # started again on any machine after an interruption.
-#   scripts/full-tier-campaign.sh sph|efg [cutbench executable]   (CUTBENCH_ROOT: the checkout, when run from a copy)
+#   scripts/full-tier-campaign.sh sph|efg|mpm [cutbench executable]   (CUTBENCH_ROOT: the checkout, when run from a copy)
 # Needs a release build. Afterwards: `cutbench runs` (what is stored), record the cases whose runs
 # are complete (reports/full_tier/runs/README.md), commit the new .run files; before a machine
 # goes away, `git add -f` the checkpoints of unfinished runs.
@@ -48,8 +48,25 @@ case "$method" in
     compute --case kahwash2018/table4 --series efg_max_stress
     compute --case kahwash2018/fig06 --case kahwash2018/fig08 --case kahwash2018/fig09 --case kahwash2018/fig10
     ;;
+  mpm)
+    # Nairn: every paper-resolution run has 15 particles through the chip (about 30,000 particles,
+    # 200,000 steps, 6e9 particle-steps: 13-14 min on one thread). 145 distinct runs (142 at N = 15
+    # equivalent cost) = about 16 h on two cores (solvers/mpm/README.md, "Campaign"). Order: the
+    # paper's central claims first (Fig 4, the Fig 9 pair, the Fig 3 resolution study, the Fig 8
+    # transition and touching forces), then the sweeps that share their runs, then the rest. Two
+    # copies of this script (one per core) work through it together: the run store's locks keep
+    # them on different runs, a copy waits where the other holds the run it reaches next.
+    compute --case nairn2015/fig04 --case nairn2015/fig09
+    compute --case nairn2015/fig03
+    compute --case nairn2015/fig08
+    compute --case nairn2015/fig02 --case nairn2015/fig05 --case nairn2015/fig17
+    compute --case nairn2015/fig10 --case nairn2015/fig13
+    compute --case nairn2015/fig11 --case nairn2015/fig15
+    compute --case nairn2015/fig14 --case nairn2015/fig16
+    compute --case nairn2015/fig12
+    ;;
   *)
-    echo "usage: scripts/full-tier-campaign.sh sph|efg [cutbench executable]" >&2
+    echo "usage: scripts/full-tier-campaign.sh sph|efg|mpm [cutbench executable]" >&2
     exit 2
     ;;
 esac

@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <deque>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -682,14 +683,30 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
   if (as_json) std::cout << all.dump(2) << "\n";
   if (!compute) return 0;
   // Compute what is missing, in the order listed (cases as given, then series order), each run
-  // stored as soon as it finishes; runs shared between cases are computed once.
+  // stored as soon as it finishes; runs shared between cases are computed once. A run that another
+  // process is computing when its turn comes goes to the back of the queue (and is waited for
+  // when nothing else is left), so that copies of this command on one store work on different runs.
   std::set<std::string> done;
   int failed = 0;
+  std::deque<Item> queue;
   for (const auto& it : items) {
     const PlannedRun& p = it.run;
     if (p.file.empty() || it.state == "stored" || done.count(p.file)) continue;
     if (!only_series.empty() && std::find(only_series.begin(), only_series.end(), p.series) == only_series.end()) continue;
     done.insert(p.file);
+    queue.push_back(it);
+  }
+  std::size_t deferred = 0;  // runs passed over in a row because another process holds them
+  while (!queue.empty()) {
+    const Item it = queue.front();
+    queue.pop_front();
+    const PlannedRun& p = it.run;
+    if (deferred <= queue.size() && run_in_progress((fs::path(dir) / p.file).string())) {
+      queue.push_back(it);
+      ++deferred;
+      continue;
+    }
+    deferred = 0;
     std::cerr << "compute " << it.label << " -> " << p.file << (it.state == "checkpoint" ? " (resuming)" : "") << "\n";
     Progress progress(true);
     const auto t0 = std::chrono::steady_clock::now();

@@ -982,12 +982,18 @@ BOOST_AUTO_TEST_CASE(run_lock_takes_over_dead_holders_and_waits_for_live_ones) {
   char host[256] = {0};
   ::gethostname(host, sizeof host - 1);
   std::ofstream(lock) << "999999999 " << host << "\n";  // no such process
+  BOOST_TEST(!run_in_progress(run));
   {
     const RunLock l(run, nullptr);
     BOOST_TEST(!l.waited());
   }
   BOOST_TEST(!fs::exists(lock));
   std::ofstream(lock) << ::getpid() << " " << host << "\n";  // a live holder (this process)
+  BOOST_TEST(run_in_progress(run));  // `cutbench runs --compute` passes over such a run first
+  fs::rename(lock, lock + ".held");
+  std::ofstream(lock) << ::getpid() << " another-host\n";
+  BOOST_TEST(run_in_progress(run));  // a holder on another host cannot be checked: taken as live
+  fs::rename(lock + ".held", lock);
   std::thread release([&] {
     std::this_thread::sleep_for(std::chrono::milliseconds(2500));
     fs::remove(lock);

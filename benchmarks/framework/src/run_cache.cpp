@@ -243,6 +243,17 @@ RunLock::RunLock(const std::string& run_path, const std::function<void(const std
 
 RunLock::~RunLock() { ::unlink(path_.c_str()); }
 
+bool run_in_progress(const std::string& run_path) {
+  std::ifstream in(run_path.substr(0, run_path.size() - 4) + ".lock");
+  long pid = 0;
+  std::string holder_host;
+  if (!(in >> pid >> holder_host) || pid <= 0) return false;
+  char host[256] = {0};
+  ::gethostname(host, sizeof host - 1);
+  // another host's holder cannot be checked: live, as RunLock takes it
+  return holder_host != host || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH;
+}
+
 namespace {
 // The magic and key at the start of a run file or a checkpoint ("" when neither).
 std::string stored_key(const std::string& path, std::string& kind) {

@@ -61,6 +61,11 @@ private:
   bool waited_ = false;
 };
 
+// Whether a live process holds the lock of the run stored at `run_path` (it is computing the run
+// now). A lock of a process of this host that no longer runs does not count; one of another host
+// counts (it cannot be checked from here; RunLock waits for it too).
+bool run_in_progress(const std::string& run_path);
+
 // One file of a run store (a run-cache directory such as reports/full_tier/runs): a finished run
 // (`.run`) or the checkpoint of an unfinished one (`.ckpt`), read without running anything.
 struct StoredRun {

@@ -446,52 +446,21 @@ void add_chip_metrics(RunOutput& out, const MpmProblem& pb, const CuttingSetup& 
 
 }  // namespace
 
-RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
-  ModelSpec spec;
-  spec.name = "mpm_cutting";
-  spec.params = cutting_params();
-  const Values v = validate_params(spec, given);
-  if (v.at("steady_end_fraction") <= v.at("steady_start_fraction")) {
-    throw InputError("steady_end_fraction", "must exceed steady_start_fraction");
-  }
-  const CuttingSetup s = cutting_setup_from(v);
-  double xt0 = 0.0;
-  MpmProblem pb = build_cutting_problem(s, &xt0);
-  pb.setup();
-  const double T = s.total_time;
-  const double out_dt = v.at("output_interval") > 0.0 ? v.at("output_interval") : T / 400.0;
-  const int nsnap = static_cast<int>(std::lround(v.at("snapshots")));
-  const double dx = pb.config().grid.dx;
-  const double steps_needed = std::ceil(T / pb.dt());
-  if (!(steps_needed <= kMaxSteps)) {
-    std::ostringstream os;
-    os << "total_time " << T << " s needs " << steps_needed << " steps of " << pb.dt() << " s (at most "
-       << kMaxSteps << ")";
-    throw std::runtime_error(os.str());
-  }
-  CuttingRun loop(pb, T, out_dt, nsnap, v.at("steady_start_fraction") * T, static_cast<long>(steps_needed) + 1,
-                  progress, xt0);
-  const DriveReport drive_report = drive(loop, "mpm_cutting");
-  if (const std::string f = pb.fault(); !f.empty()) throw std::runtime_error("MPM run stopped: " + f);
-  const double wall = loop.wall();
-  const double e_at_window = loop.e_at_window(), eI_at_window = loop.eI_at_window();
-  const std::vector<double>&tt = loop.tt, &fc = loop.fc, &ft = loop.ft, &fnb = loop.fnb, &gap = loop.gap;
-
-  RunOutput out;
-  out.snapshots = std::move(loop.snapshots);
-  out.notes = drive_notes(drive_report, "mpm_cutting");
+namespace {
+// The run's histories: forces and the energy audit at the output times.
+void add_histories(RunOutput& out, const CuttingRun& loop) {
   Table forces;
   forces.name = "forces";
-  forces.add("t", "s", tt);
-  forces.add("F_c", "N/m", fc);
-  forces.add("F_t", "N/m", ft);
-  forces.add("F_nb", "N/m", fnb);
-  forces.add("tip_gap", "m", gap);
+  forces.add("t", "s", loop.tt);
+  forces.add("F_c", "N/m", loop.fc);
+  forces.add("F_t", "N/m", loop.ft);
+  forces.add("F_nb", "N/m", loop.fnb);
+  forces.add("tip_gap", "m", loop.gap);
   forces.add("feedback_alpha", "1/s", loop.alph);
   out.tables.push_back(std::move(forces));
   Table energy;
   energy.name = "energy";
-  energy.add("t", "s", tt);
+  energy.add("t", "s", loop.tt);
   energy.add("tool_work", "J/m", loop.e_tool);
   energy.add("kinetic", "J/m", loop.e_kin);
   energy.add("strain", "J/m", loop.e_strain);
@@ -502,16 +471,19 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   energy.add("extrapolation_loss", "J/m", loop.e_ext);
   energy.add("residual", "J/m", loop.e_res);
   out.tables.push_back(std::move(energy));
+}
 
-  const double t_steady = v.at("steady_start_fraction") * T;
-  const double t_steady_end = v.at("steady_end_fraction") * T;
+// Steady-window means of the output-interval forces and gaps over [t0, t1], touching, and
+// the scaled quantities of the paper's figures.
+void add_steady_window(RunOutput& out, const CuttingRun& loop, const CuttingSetup& s, double t0, double t1,
+                       double out_dt, double dx) {
   std::vector<double> wc, wt, wn, wg;
-  for (std::size_t i = 0; i < tt.size(); ++i) {
-    if (tt[i] >= t_steady && tt[i] <= t_steady_end + 0.5 * out_dt) {
-      wc.push_back(fc[i]);
-      wt.push_back(ft[i]);
-      wn.push_back(fnb[i]);
-      wg.push_back(gap[i]);
+  for (std::size_t i = 0; i < loop.tt.size(); ++i) {
+    if (loop.tt[i] >= t0 && loop.tt[i] <= t1 + 0.5 * out_dt) {
+      wc.push_back(loop.fc[i]);
+      wt.push_back(loop.ft[i]);
+      wn.push_back(loop.fnb[i]);
+      wg.push_back(loop.gap[i]);
     }
   }
   double m, sd;
@@ -532,41 +504,84 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   mean_std(wg, m, sd);
   put("tip_gap", m, "m");
   put("touching", m < dx ? 1.0 : 0.0, "1");
-  {
-    std::size_t nt = 0;
-    for (double g : wg) nt += g < dx ? 1 : 0;
-    put("touching_fraction", wg.empty() ? std::nan("") : static_cast<double>(nt) / static_cast<double>(wg.size()),
-        "1");
-  }
-  {  // Williams' scaling and the friction parameter of Eq. 12
-    const double E = s.material.youngs(), nu = s.material.poisson();
-    const double Eprime = E / (1.0 - nu * nu);
-    put("h_star", s.material.sigma_y0 * s.material.sigma_y0 * s.h / (2.0 * Eprime * s.G_c), "1");
-    const double ta = std::tan(s.rake);
-    put("Z", (s.mu - ta) / (1.0 + s.mu * ta), "1");
-  }
+  std::size_t nt = 0;
+  for (double g : wg) nt += g < dx ? 1 : 0;
+  put("touching_fraction", wg.empty() ? std::nan("") : static_cast<double>(nt) / static_cast<double>(wg.size()), "1");
+  // Williams' scaling and the friction parameter of Eq. 12
+  const double E = s.material.youngs(), nu = s.material.poisson();
+  const double Eprime = E / (1.0 - nu * nu);
+  put("h_star", s.material.sigma_y0 * s.material.sigma_y0 * s.h / (2.0 * Eprime * s.G_c), "1");
+  const double ta = std::tan(s.rake);
+  put("Z", (s.mu - ta) / (1.0 + s.mu * ta), "1");
+  out.notes.push_back("F_c, F_t: force of the tool on the material per unit width (F_t positive pushing the "
+                      "material down, the paper's sign); averages over " +
+                      std::to_string(t0) + " s <= t <= " + std::to_string(t1) + " s of output-interval means.");
+  out.notes.push_back("touching = mean gap in the steady window below one cell (" + std::to_string(dx) +
+                      " m), the gap from the tool tip to the first intact cohesive segment ahead of it (intact "
+                      "segments left behind the tip, stranded_segments, do not count).");
+}
+
+// The crack's mode mix and the energy audit at the end of the run.
+void add_crack_and_energy(RunOutput& out, const MpmProblem& pb, const CuttingRun& loop, double xt0) {
+  auto put = [&](const std::string& name, double value, const std::string& unit) { out.set_scalar(name, value, unit); };
   put("mode1_fraction", pb.mode1_fraction(), "1");
-  put("released_energy", pb.released_energy(), "J/m");
-  {
-    const double e = pb.released_energy();
-    const double eI = e > 0.0 ? pb.mode1_fraction() * e : 0.0;
-    put("mode1_fraction_steady", e - e_at_window > 0.0 ? (eI - eI_at_window) / (e - e_at_window) : std::nan(""), "1");
+  const double e = pb.released_energy();
+  put("released_energy", e, "J/m");
+  const double eI = e > 0.0 ? pb.mode1_fraction() * e : 0.0;
+  put("mode1_fraction_steady",
+      e - loop.e_at_window() > 0.0 ? (eI - loop.eI_at_window()) / (e - loop.e_at_window()) : std::nan(""), "1");
+  const double xtool = xt0 + pb.rigid_displacement().x();
+  put("stranded_segments", static_cast<double>(pb.intact_segments_behind(xtool - pb.config().crack.seg_len)), "1");
+  const EnergyBalance eb = pb.energy_balance();
+  put("energy_tool_work", eb.audit.tool_work, "J/m");
+  put("energy_kinetic", eb.kinetic, "J/m");
+  put("energy_strain", eb.strain, "J/m");
+  put("energy_plastic", eb.plastic, "J/m");
+  put("energy_cohesive", eb.cohesive, "J/m");
+  put("energy_pic_damping", eb.audit.pic_damping, "J/m");
+  put("energy_feedback_loss", eb.audit.feedback_loss, "J/m");
+  put("energy_extrapolation_loss", eb.audit.extrapolation_loss, "J/m");
+  put("energy_residual", eb.residual, "J/m");
+  put("energy_residual_fraction", eb.audit.tool_work > 0.0 ? std::fabs(eb.residual) / eb.audit.tool_work : std::nan(""), "1");
+}
+}  // namespace
+
+RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
+  ModelSpec spec;
+  spec.name = "mpm_cutting";
+  spec.params = cutting_params();
+  const Values v = validate_params(spec, given);
+  if (v.at("steady_end_fraction") <= v.at("steady_start_fraction")) {
+    throw InputError("steady_end_fraction", "must exceed steady_start_fraction");
   }
-  {  // the energy audit at the end of the run
-    const EnergyBalance eb = pb.energy_balance();
-    put("energy_tool_work", eb.audit.tool_work, "J/m");
-    put("energy_kinetic", eb.kinetic, "J/m");
-    put("energy_strain", eb.strain, "J/m");
-    put("energy_plastic", eb.plastic, "J/m");
-    put("energy_cohesive", eb.cohesive, "J/m");
-    put("energy_pic_damping", eb.audit.pic_damping, "J/m");
-    put("energy_feedback_loss", eb.audit.feedback_loss, "J/m");
-    put("energy_extrapolation_loss", eb.audit.extrapolation_loss, "J/m");
-    put("energy_residual", eb.residual, "J/m");
-    put("energy_residual_fraction", eb.audit.tool_work > 0.0 ? std::fabs(eb.residual) / eb.audit.tool_work : std::nan(""), "1");
-    const double xtool = xt0 + pb.rigid_displacement().x();
-    put("stranded_segments", static_cast<double>(pb.intact_segments_behind(xtool - pb.config().crack.seg_len)), "1");
+  const CuttingSetup s = cutting_setup_from(v);
+  double xt0 = 0.0;
+  MpmProblem pb = build_cutting_problem(s, &xt0);
+  pb.setup();
+  const double T = s.total_time;
+  const double out_dt = v.at("output_interval") > 0.0 ? v.at("output_interval") : T / 400.0;
+  const int nsnap = static_cast<int>(std::lround(v.at("snapshots")));
+  const double steps_needed = std::ceil(T / pb.dt());
+  if (!(steps_needed <= kMaxSteps)) {
+    std::ostringstream os;
+    os << "total_time " << T << " s needs " << steps_needed << " steps of " << pb.dt() << " s (at most "
+       << kMaxSteps << ")";
+    throw std::runtime_error(os.str());
   }
+  CuttingRun loop(pb, T, out_dt, nsnap, v.at("steady_start_fraction") * T, static_cast<long>(steps_needed) + 1,
+                  progress, xt0);
+  const DriveReport drive_report = drive(loop, "mpm_cutting");
+  if (const std::string f = pb.fault(); !f.empty()) throw std::runtime_error("MPM run stopped: " + f);
+  const double wall = loop.wall();
+
+  RunOutput out;
+  out.snapshots = std::move(loop.snapshots);
+  out.notes = drive_notes(drive_report, "mpm_cutting");
+  add_histories(out, loop);
+  add_steady_window(out, loop, s, v.at("steady_start_fraction") * T, v.at("steady_end_fraction") * T, out_dt,
+                    pb.config().grid.dx);
+  add_crack_and_energy(out, pb, loop, xt0);
+  auto put = [&](const std::string& name, double value, const std::string& unit) { out.set_scalar(name, value, unit); };
   put("particles", static_cast<double>(pb.size()), "1");
   put("steps", static_cast<double>(pb.steps()), "1");
   put("dt", pb.dt(), "s");
@@ -577,13 +592,6 @@ RunOutput run_cutting(const Values& given, const ProgressFn& progress) {
   put("threads", pb.threads(), "1");
   put("frozen_particles", static_cast<double>(pb.frozen()), "1");
   add_chip_metrics(out, pb, s);
-  out.notes.push_back("F_c, F_t: force of the tool on the material per unit width (F_t positive pushing the "
-                      "material down, the paper's sign); averages over " +
-                      std::to_string(t_steady) + " s <= t <= " + std::to_string(t_steady_end) +
-                      " s of output-interval means.");
-  out.notes.push_back("touching = mean gap in the steady window below one cell (" + std::to_string(dx) +
-                      " m), the gap from the tool tip to the first intact cohesive segment ahead of it (intact "
-                      "segments left behind the tip, stranded_segments, do not count).");
   if (pb.frozen() > 0) {
     out.notes.push_back(std::to_string(pb.frozen()) + " particles left the grid and were frozen.");
   }

@@ -727,6 +727,31 @@ void MpmProblem::grid_to_particles() {
   }
 }
 
+void MpmProblem::constrained_velocities(std::size_t n, const Eigen::Vector2d& V, bool contact, Eigen::Vector2d pm[2],
+                                         Eigen::Vector2d& imp, Eigen::Vector2d& impb) {
+  const auto nnz = static_cast<std::size_t>(nn_);
+  bool has[2];
+  for (int f = 0; f < 2; ++f) {
+    const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
+    has[f] = nd.m > mmin_;
+    pm[f] = has[f] ? Eigen::Vector2d(nd.px, nd.py) : Eigen::Vector2d::Zero();
+  }
+  imp.setZero();
+  impb.setZero();
+  if (contact) resolve_contacts(n, pm, has, V, imp, impb);
+  const int fm = fixed_[n];
+  for (int f = 0; f < 2; ++f) {
+    const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
+    if (!has[f]) {
+      vstrain_[k].setZero();
+      continue;
+    }
+    if (fm & 1) pm[f].x() = 0.0;
+    if (fm & 2) pm[f].y() = 0.0;
+    vstrain_[k] = pm[f] / nodes_[k].m;
+  }
+}
+
 void MpmProblem::remap_momenta() {
   const long np = static_cast<long>(x_.size());
   const Eigen::Vector2d V = cfg_.tool.at(time_ + dt_);
@@ -772,26 +797,8 @@ void MpmProblem::remap_momenta() {
     }
 #pragma omp for schedule(static)
     for (long nl = 0; nl < nn_; ++nl) {
-      const auto n = static_cast<std::size_t>(nl);
       Eigen::Vector2d pm[2], imp, impb;
-      bool has[2];
-      for (int f = 0; f < 2; ++f) {
-        const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
-        has[f] = nd.m > mmin_;
-        pm[f] = has[f] ? Eigen::Vector2d(nd.px, nd.py) : Eigen::Vector2d::Zero();
-      }
-      if (cfg_.numerics.musl_recontact) resolve_contacts(n, pm, has, V, imp, impb);
-      const int fm = fixed_[n];
-      for (int f = 0; f < 2; ++f) {
-        const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
-        if (!has[f]) {
-          vstrain_[k].setZero();
-          continue;
-        }
-        if (fm & 1) pm[f].x() = 0.0;
-        if (fm & 2) pm[f].y() = 0.0;
-        vstrain_[k] = pm[f] / nodes_[k].m;
-      }
+      constrained_velocities(static_cast<std::size_t>(nl), V, cfg_.numerics.musl_recontact, pm, imp, impb);
     }
   }
 }
@@ -827,25 +834,12 @@ void MpmProblem::constrain_extrapolated(bool count, double t) {
   for (long nl = 0; nl < nn_; ++nl) {
     const auto n = static_cast<std::size_t>(nl);
     Eigen::Vector2d pm[2], imp, impb;
-    bool has[2];
-    for (int f = 0; f < 2; ++f) {
-      const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
-      has[f] = nd.m > mmin_;
-      pm[f] = has[f] ? Eigen::Vector2d(nd.px, nd.py) : Eigen::Vector2d::Zero();
-    }
-    resolve_contacts(n, pm, has, V, imp, impb);
-    const int fm = fixed_[n];
-    for (int f = 0; f < 2; ++f) {
-      const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
-      if (!has[f]) {
-        vstrain_[k].setZero();
-        continue;
-      }
-      if (fm & 1) pm[f].x() = 0.0;
-      if (fm & 2) pm[f].y() = 0.0;
-      nodes_[k].px = pm[f].x();
-      nodes_[k].py = pm[f].y();
-      vstrain_[k] = pm[f] / nodes_[k].m;
+    constrained_velocities(n, V, true, pm, imp, impb);
+    for (int f = 0; f < 2; ++f) {  // in place (NairnMPM's post-extrapolation contact)
+      NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
+      if (nd.m <= mmin_) continue;
+      nd.px = pm[f].x();
+      nd.py = pm[f].y();
     }
     node_audit_[n] = Eigen::Vector2d(imp.dot(V), 0.0);
     imp_[n] = imp;

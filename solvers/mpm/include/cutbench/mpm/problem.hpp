@@ -244,6 +244,11 @@ private:
   void grid_update();
   void grid_to_particles();
   void remap_momenta();  // MUSL: particle momenta -> grid -> contact/BCs -> vstrain_
+  // Node n's strain velocities vstrain_ from its momenta with tool and crack contact (when
+  // `contact`) and the fixed components applied to a copy: the constrained momenta and the tool's
+  // impulse out.
+  void constrained_velocities(std::size_t n, const Eigen::Vector2d& V, bool contact, Eigen::Vector2d pm[2],
+                              Eigen::Vector2d& imp, Eigen::Vector2d& impb);
   void update_strain(std::size_t p, const Eigen::Matrix2d& L, double h);  // over a time h
   void resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const bool has[2], const Eigen::Vector2d& V,
                         Eigen::Vector2d& imp, Eigen::Vector2d& impb) const;

@@ -94,6 +94,8 @@ def main():
     ap.add_argument("--how", required=True, help="how the run was made (binary commit, threads, machine)")
     ap.add_argument("--into", default=os.path.join(here, "full_tier"), help="record directory")
     ap.add_argument("--case", action="append", default=[], help="record only this case id (repeatable)")
+    ap.add_argument("--complete-only", action="store_true",
+                    help="skip cases that are NOT RUN (a `cutbench run --stored-only` of a store that lacks some of their runs)")
     a = ap.parse_args()
     if not os.path.isdir(a.results):
         fail("--results: '%s' is not a directory (expected the --out directory of a full-tier run)" % a.results)
@@ -113,7 +115,13 @@ def main():
                 continue
             if a.case and rec["case"] not in a.case:
                 continue
+            if a.complete_only and rec.get("status") == "NOT RUN":
+                print("not recorded %s: NOT RUN (runs missing from the store)" % rec["case"])
+                continue
             found.append(rec)
+    if not found and a.complete_only:
+        print("nothing to record: no case is complete")
+        return
     if not found:
         fail("--results: no full-tier case record (<paper>/<item>.json with tier = full) in '%s'" % a.results)
     missing = set(a.case) - {r["case"] for r in found}

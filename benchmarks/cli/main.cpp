@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cctype>
 #include <deque>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +32,8 @@
 // after the project headers: <signal.h> (through <sys/wait.h>) defines a macro `si_value`
 #include <spawn.h>
 #include <sys/wait.h>
+
+#include "slurm.hpp"
 
 namespace fs = std::filesystem;
 using namespace cutbench;
@@ -633,9 +636,11 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
 // The solver runs the selected cases compute at `tier` and which of them `dir` holds already
 // (stored), holds a checkpoint of (resumes) or lacks (to compute).
 int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, const std::string& paper,
-                  const std::string& tier, bool as_json, bool compute, const std::vector<std::string>& only_series) {
+                  const std::string& tier, bool as_json, bool compute, const std::vector<std::string>& only_series,
+                  const std::vector<std::string>& only_runs, const cli::SlurmOptions& slurm, double checkpoint_minutes) {
   const std::vector<fs::path> files = select_case_files(ids, paper, false);
-  if (compute) set_run_cache_dir(dir);  // creates it (an input error when it cannot be written)
+  if (compute && !slurm.dry_run) set_run_cache_dir(dir);  // creates it (an input error when it cannot be written)
+  std::vector<std::string> case_ids;
   std::map<std::string, StoredRun> stored;
   for (auto& s : scan_run_store(dir)) stored[s.file] = std::move(s);
   struct Item {
@@ -648,7 +653,8 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
   for (const auto& f : files) {
     const CaseSpec c = load_case(f, tier);
     if (!c.in_tier(tier)) continue;
-    std::size_t n_stored = 0, n_ckpt = 0, n_todo = 0;
+    case_ids.push_back(c.id);
+    std::size_t n_stored = 0, n_ckpt = 0, n_todo = 0, n_running = 0;
     json runs = json::array();
     const auto planned = planned_runs(c);
     // the parameters that tell this case's runs apart (shown in the listing)
@@ -657,8 +663,12 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
       for (const auto& [k, v] : p.params) values[k].insert(v);
     }
     for (const auto& p : planned) {
-      const std::string state = planned_run_state(p, stored);
-      (state == "stored" ? n_stored : state == "checkpoint" ? n_ckpt : n_todo)++;
+      std::string state = planned_run_state(p, stored);
+      if (state != "stored" && !p.file.empty()) {  // a live process holds its lock: being computed now
+        const std::string holder = run_lock_holder((fs::path(dir) / p.file).string());
+        if (!holder.empty()) state = "running (" + holder + ")";
+      }
+      (state == "stored" ? n_stored : state == "checkpoint" ? n_ckpt : state.rfind("running", 0) == 0 ? n_running : n_todo)++;
       json params = json::object();
       std::string distinct;
       for (const auto& [k, v] : p.params) {
@@ -671,12 +681,13 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
     }
     all.push_back({{"case", c.id}, {"tier", tier}, {"runs", runs}});
     if (as_json) continue;
-    std::cout << c.id << " (" << tier << "): " << runs.size() << " solver run(s), " << n_stored << " stored, " << n_ckpt
-              << " with a checkpoint, " << n_todo << " to compute\n";
+    std::cout << c.id << " (" << tier << "): " << runs.size() << " solver run(s), " << n_stored << " stored, " << n_running
+              << " running, " << n_ckpt << " with a checkpoint, " << n_todo << " to compute\n";
     for (const auto& r : runs) {
       std::cout << "  " << std::left << std::setw(24) << (r["series"].get<std::string>() + " " +
                                                              std::to_string(r["point"].get<std::size_t>()))
-                << std::setw(14) << r["state"].get<std::string>() << std::setw(36) << r["file"].get<std::string>()
+                << std::setw(static_cast<int>(std::max<std::size_t>(14, r["state"].get<std::string>().size() + 2)))
+                << r["state"].get<std::string>() << std::setw(36) << r["file"].get<std::string>()
                 << r["distinct"].get<std::string>() << "\n";
     }
   }
@@ -693,8 +704,18 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
     const PlannedRun& p = it.run;
     if (p.file.empty() || it.state == "stored" || done.count(p.file)) continue;
     if (!only_series.empty() && std::find(only_series.begin(), only_series.end(), p.series) == only_series.end()) continue;
+    if (!only_runs.empty() && std::find(only_runs.begin(), only_runs.end(), p.file) == only_runs.end()) continue;
     done.insert(p.file);
     queue.push_back(it);
+  }
+  if (slurm.enabled) {
+    cli::SlurmPlan plan;
+    plan.store = fs::absolute(dir).lexically_normal().string();
+    plan.case_ids = case_ids;
+    plan.tier = tier;
+    plan.checkpoint_minutes = checkpoint_minutes;
+    for (const auto& it : queue) plan.runs.push_back(it.run.file);
+    return cli::submit_slurm(plan, slurm);
   }
   std::size_t deferred = 0;  // runs passed over in a row because another process holds them
   while (!queue.empty()) {
@@ -858,6 +879,10 @@ int main(int argc, char** argv) {
   auto* run_ckpt = run->add_option("--checkpoint-minutes", checkpoint_minutes,
                   "With --run-cache: minutes of wall time between two checkpoints of a solver run that supports "
                   "them (MPM, SPH and EFG cutting; `cutbench describe SOLVER` says which); an interrupted run resumes from its last checkpoint (default 10)");
+  bool stored_only = false;
+  run->add_flag("--stored-only", stored_only,
+                "With --run-cache: compute nothing; a case whose runs the store lacks is NOT RUN (evaluate what a "
+                "cluster job array stored)");
   double max_memory_gib = kDefaultMaxRunBytes / 1073741824.0;
   run->add_option("--max-memory", max_memory_gib,
                   "GiB one solver run may need (its estimate from the parameters; a larger case is refused "
@@ -918,6 +943,19 @@ int main(int argc, char** argv) {
   runs->add_option("-j,--threads", threads, "OpenMP threads (with --compute)");
   runs->add_option("--checkpoint-minutes", checkpoint_minutes, "With --compute: minutes between two checkpoints (default 10)");
   runs->add_option("--max-memory", max_memory_gib, "GiB one solver run may need (default 8)");
+  std::vector<std::string> runs_only;
+  runs->add_option("--run", runs_only, "With --compute: only this run file of the plan (repeatable; a cluster task's run)");
+  cli::SlurmOptions slurm;
+  runs->add_flag("--slurm", slurm.enabled,
+                 "With --compute: submit the runs the store lacks to Slurm as a job array (one run per task, into the "
+                 "store, with checkpoints) and a dependent job that records the cases the store then completes");
+  runs->add_option("--partition", slurm.partition, "With --slurm: partition");
+  runs->add_option("--time", slurm.time, "With --slurm: time limit of one task (default 24:00:00)");
+  runs->add_option("--cpus-per-task", slurm.cpus_per_task, "With --slurm: CPUs (OpenMP threads) per run (default 1)");
+  runs->add_option("--account", slurm.account, "With --slurm: account");
+  runs->add_option("--job-name", slurm.job_name, "With --slurm: job name (default cutbench; scripts <store>/slurm/<name>.*.sh)");
+  runs->add_flag("--dry-run", slurm.dry_run, "With --slurm: print the two batch scripts, submit and write nothing");
+  runs->add_option("--records", slurm.records, "With --slurm: directory the record job writes the records into (default reports/full_tier)");
 
   std::vector<std::string> audit_ids;
   std::string audit_paper, audit_results = "results";
@@ -964,7 +1002,9 @@ int main(int argc, char** argv) {
       if (run_ckpt->count() > 0 && run_cache.empty()) {
         throw InputError("--checkpoint-minutes", "checkpoints are kept beside stored runs: give --run-cache DIR too");
       }
+      if (stored_only && run_cache.empty()) throw InputError("--stored-only", "evaluates a run store: give --run-cache DIR too");
       set_run_cache_dir(run_cache);
+      set_run_cache_stored_only(stored_only);
       set_checkpoint_interval(60.0 * checkpoint_minutes);
       return cmd_run(run_ids, run_paper, run_tier, run_out, ctest_mode, strict);
     }
@@ -984,8 +1024,25 @@ int main(int argc, char** argv) {
         return cmd_runs(runs_dir, runs_check, runs_json, runs_scalars, runs_upgrade);
       }
       if (runs_tier != "quick" && runs_tier != "full") throw InputError("--tier", "quick or full");
+      if ((slurm.enabled || !runs_only.empty()) && !runs_compute) {
+        throw InputError(slurm.enabled ? "--slurm" : "--run", "a plan to compute: give --compute too");
+      }
+      if (slurm.dry_run && !slurm.enabled) throw InputError("--dry-run", "prints the Slurm scripts: give --slurm too");
+      if (slurm.enabled) {
+        if (!(slurm.cpus_per_task >= 1 && slurm.cpus_per_task <= 1024)) {
+          throw InputError("--cpus-per-task", "a number of CPUs in 1..1024 (got " + std::to_string(slurm.cpus_per_task) + ")");
+        }
+        const auto word = [](const std::string& s) {
+          return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' || c == ':'; });
+        };
+        if (slurm.job_name.empty() || !word(slurm.job_name)) throw InputError("--job-name", "letters, digits, '_', '-', '.' (got '" + slurm.job_name + "')");
+        if (!word(slurm.partition)) throw InputError("--partition", "letters, digits, '_', '-', '.'");
+        if (!word(slurm.account)) throw InputError("--account", "letters, digits, '_', '-', '.'");
+        if (slurm.time.empty() || !word(slurm.time)) throw InputError("--time", "a Slurm time limit such as 24:00:00 or 2-00:00:00");
+      }
       set_checkpoint_interval(60.0 * checkpoint_minutes);
-      return cmd_runs_plan(runs_dir, runs_cases, runs_paper, runs_tier, runs_json, runs_compute, runs_series);
+      return cmd_runs_plan(runs_dir, runs_cases, runs_paper, runs_tier, runs_json, runs_compute, runs_series, runs_only,
+                           slurm, checkpoint_minutes);
     }
   } catch (const InputError& e) {
     std::cerr << "cutbench: error: " << e.what() << "\n";

@@ -243,6 +243,15 @@ RunLock::RunLock(const std::string& run_path, const std::function<void(const std
 
 RunLock::~RunLock() { ::unlink(path_.c_str()); }
 
+std::string run_lock_holder(const std::string& run_path) {
+  if (!run_in_progress(run_path)) return "";
+  std::ifstream in(run_path.substr(0, run_path.size() - 4) + ".lock");
+  long pid = 0;
+  std::string host;
+  in >> pid >> host;
+  return "pid " + std::to_string(pid) + " on " + host;
+}
+
 bool run_in_progress(const std::string& run_path) {
   std::ifstream in(run_path.substr(0, run_path.size() - 4) + ".lock");
   long pid = 0;
@@ -361,6 +370,12 @@ void set_run_cache_dir(const std::string& dir) {
   g_cache_dir = dir;
 }
 const std::string& run_cache_dir() { return g_cache_dir; }
+
+namespace {
+bool g_stored_only = false;
+}
+void set_run_cache_stored_only(bool on) { g_stored_only = on; }
+bool run_cache_stored_only() { return g_stored_only; }
 
 void set_checkpoint_interval(double seconds) {
   if (!(seconds > 0.0 && seconds <= 1e7))

@@ -66,6 +66,7 @@ RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressF
     if (reused) *reused = true;
     return run;
   }
+  if (run_cache_stored_only()) throw RunNotStored("run " + run_file_name(sv.name, key) + " is not in " + cache);
   // one process computes a run of a shared store; another waits and reads what it stored
   const RunLock lock(cache_path, [&](const std::string& msg) {
     if (progress) progress(0.0, msg);
@@ -285,6 +286,7 @@ CaseResult run_case(const CaseSpec& spec, const std::string& tier, const Progres
   r.threads = max_threads();
   const auto t0 = std::chrono::steady_clock::now();
   ReferenceCache refs;
+  bool not_stored = false;  // stored runs only: a series whose runs the store lacks
   if (spec.implemented()) {
     const std::size_t n = spec.series.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -338,6 +340,9 @@ CaseResult run_case(const CaseSpec& spec, const std::string& tier, const Progres
         r.series.push_back(run_series(linked, refs, progress, f0, f1));
       } catch (const InputError&) {
         throw;
+      } catch (const RunNotStored&) {
+        not_stored = true;  // stored runs only: the series is not evaluated
+        continue;
       } catch (const std::exception& e) {
         SeriesResult failed;
         failed.name = spec.series[i].name;
@@ -356,6 +361,7 @@ CaseResult run_case(const CaseSpec& spec, const std::string& tier, const Progres
   for (const auto& s : r.series) {
     if (!s.error.empty()) r.status = "ERROR";
   }
+  if (not_stored && r.status != "ERROR") r.status = "NOT RUN";  // incomplete: no verdict
   if (spec.solver != "analytic") r.solver_sources = solver_sources(spec.solver);
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

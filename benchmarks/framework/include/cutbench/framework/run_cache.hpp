@@ -13,6 +13,7 @@
 // name and renamed.
 #include <functional>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,8 @@ private:
 // now). A lock of a process of this host that no longer runs does not count; one of another host
 // counts (it cannot be checked from here; RunLock waits for it too).
 bool run_in_progress(const std::string& run_path);
+// Who holds it: "pid P on HOST" while run_in_progress, else "".
+std::string run_lock_holder(const std::string& run_path);
 
 // One file of a run store (a run-cache directory such as reports/full_tier/runs): a finished run
 // (`.run`) or the checkpoint of an unfinished one (`.ckpt`), read without running anything.
@@ -95,6 +98,15 @@ const std::string& run_cache_dir();
 // Wall time between two checkpoints of a solver run made with the run cache on (solvers that
 // support checkpoints write <solver>-<hash>.ckpt next to the run file and resume from it; the file
 // is removed once the finished run is stored). Default 600 s; must be > 0.
+// Stored runs only: a solver run that the run cache does not hold is not computed; solver_run
+// throws RunNotStored and the series that needs it is not evaluated (its checks: NOT RUN). For
+// evaluating a shared store that other processes (a cluster job array) fill.
+void set_run_cache_stored_only(bool on);
+bool run_cache_stored_only();
+struct RunNotStored : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 void set_checkpoint_interval(double seconds);
 double checkpoint_interval();
 

@@ -14,7 +14,7 @@ cutbench="${2:-build/release/benchmarks/cli/cutbench}"
 store=reports/full_tier/runs
 failed=0
 compute() {  # a failed run is reported and the campaign goes on
-  "$cutbench" runs "$store" --compute -j 1 --checkpoint-minutes "${CHECKPOINT_MINUTES:-5}" "$@" || failed=1
+  "$cutbench" runs "$store" --compute --skip-running -j 1 --checkpoint-minutes "${CHECKPOINT_MINUTES:-5}" "$@" || failed=1
 }
 case "$method" in
   sph)
@@ -54,8 +54,9 @@ case "$method" in
     # equivalent cost) = about 16 h on two cores (solvers/mpm/README.md, "Campaign"). Order: the
     # paper's central claims first (Fig 4, the Fig 9 pair, the Fig 3 resolution study, the Fig 8
     # transition and touching forces), then the sweeps that share their runs, then the rest. Two
-    # copies of this script (one per core) work through it together: the run store's locks keep
-    # them on different runs, a copy waits where the other holds the run it reaches next.
+    # copies of this script (one per core, started a few seconds apart) work through it together:
+    # the run store's locks keep them on different runs, and each leaves to the other the runs it
+    # is computing (--skip-running).
     compute --case nairn2015/fig04 --case nairn2015/fig09
     compute --case nairn2015/fig03
     compute --case nairn2015/fig08

@@ -637,7 +637,8 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
 // (stored), holds a checkpoint of (resumes) or lacks (to compute).
 int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, const std::string& paper,
                   const std::string& tier, bool as_json, bool compute, const std::vector<std::string>& only_series,
-                  const std::vector<std::string>& only_runs, const cli::SlurmOptions& slurm, double checkpoint_minutes) {
+                  const std::vector<std::string>& only_runs, const cli::SlurmOptions& slurm, double checkpoint_minutes,
+                  bool skip_running) {
   const std::vector<fs::path> files = select_case_files(ids, paper, false);
   if (compute && !slurm.dry_run) set_run_cache_dir(dir);  // creates it (an input error when it cannot be written)
   std::vector<std::string> case_ids;
@@ -722,10 +723,17 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
     const Item it = queue.front();
     queue.pop_front();
     const PlannedRun& p = it.run;
-    if (deferred <= queue.size() && run_in_progress((fs::path(dir) / p.file).string())) {
-      queue.push_back(it);
-      ++deferred;
-      continue;
+    if (run_in_progress((fs::path(dir) / p.file).string())) {
+      if (skip_running) {
+        std::cout << "skipped " << p.file << " (" << it.label << "): " << run_lock_holder((fs::path(dir) / p.file).string())
+                  << " is computing it\n";
+        continue;
+      }
+      if (deferred <= queue.size()) {
+        queue.push_back(it);
+        ++deferred;
+        continue;
+      }
     }
     deferred = 0;
     std::cerr << "compute " << it.label << " -> " << p.file << (it.state == "checkpoint" ? " (resuming)" : "") << "\n";
@@ -944,6 +952,9 @@ int main(int argc, char** argv) {
   runs->add_option("--checkpoint-minutes", checkpoint_minutes, "With --compute: minutes between two checkpoints (default 10)");
   runs->add_option("--max-memory", max_memory_gib, "GiB one solver run may need (default 8)");
   std::vector<std::string> runs_only;
+  bool runs_skip_running = false;
+  runs->add_flag("--skip-running", runs_skip_running,
+                 "With --compute: leave the runs another live process is computing to it (default: wait for them at the end)");
   runs->add_option("--run", runs_only, "With --compute: only this run file of the plan (repeatable; a cluster task's run)");
   cli::SlurmOptions slurm;
   runs->add_flag("--slurm", slurm.enabled,
@@ -1042,7 +1053,7 @@ int main(int argc, char** argv) {
       }
       set_checkpoint_interval(60.0 * checkpoint_minutes);
       return cmd_runs_plan(runs_dir, runs_cases, runs_paper, runs_tier, runs_json, runs_compute, runs_series, runs_only,
-                           slurm, checkpoint_minutes);
+                           slurm, checkpoint_minutes, runs_skip_running);
     }
   } catch (const InputError& e) {
     std::cerr << "cutbench: error: " << e.what() << "\n";

@@ -30,6 +30,7 @@
 #include "cutbench/framework/store.hpp"
 
 // after the project headers: <signal.h> (through <sys/wait.h>) defines a macro `si_value`
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 
@@ -164,18 +165,109 @@ std::vector<fs::path> select_case_files(const std::vector<std::string>& ids, con
   return files;
 }
 
+
+// The cases of one `cutbench run` on `jobs` worker processes, each a `cutbench run` of one case
+// into the same results directory (its console lines printed when it ends); the summary and the
+// exit code as one process would give them.
+int run_cases_in_parallel(const std::vector<fs::path>& files, const std::vector<CaseSpec>& cases, const std::string& tier,
+                          const fs::path& out, bool strict, int jobs, const std::vector<std::string>& pass_through) {
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  fs::create_directories(out);
+  struct Worker {
+    pid_t pid;
+    std::size_t index;
+    fs::path log;
+  };
+  std::vector<Worker> running;
+  int n_error_exit = 0, n_fail_exit = 0;
+  std::size_t next = 0;
+  auto finish_one = [&]() {
+    int status = 0;
+    pid_t pid = -1;
+    while ((pid = ::waitpid(-1, &status, 0)) < 0 && errno == EINTR) {
+    }
+    for (auto it = running.begin(); it != running.end(); ++it) {
+      if (it->pid != pid) continue;
+      std::ifstream in(it->log);
+      for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line.find(" cases (" + tier + " tier)") != std::string::npos) continue;
+        std::cout << line << "\n";
+      }
+      std::cout.flush();
+      fs::remove(it->log);
+      const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : kExitError;
+      if (rc == kExitError || rc < 0 || (rc != 0 && rc != kExitFail && rc != kExitSkip)) ++n_error_exit;
+      if (rc == kExitFail) ++n_fail_exit;
+      if (rc != 0 && rc != kExitFail && rc != kExitSkip && rc != kExitError) {
+        std::cout << "ERROR           " << cases[it->index].id << "  (worker exit code " << rc << ")\n";
+      }
+      running.erase(it);
+      return;
+    }
+  };
+  while (next < files.size() || !running.empty()) {
+    if (next < files.size() && static_cast<int>(running.size()) < jobs) {
+      std::vector<std::string> argv = {self, "run", files[next].string(), "--tier", tier, "--out", out.string()};
+      argv.insert(argv.end(), pass_through.begin(), pass_through.end());
+      if (strict) argv.push_back("--strict");
+      const fs::path log = out / (".worker-" + std::to_string(::getpid()) + "-" + std::to_string(next) + ".log");
+      posix_spawn_file_actions_t fa;
+      posix_spawn_file_actions_init(&fa);
+      posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+      std::vector<char*> args;
+      for (auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+      args.push_back(nullptr);
+      pid_t pid = 0;
+      const int rc = posix_spawn(&pid, self.c_str(), &fa, nullptr, args.data(), environ);
+      posix_spawn_file_actions_destroy(&fa);
+      if (rc != 0) throw std::runtime_error("cannot start a worker for " + cases[next].id);
+      std::cerr << "run " << cases[next].id << " (" << tier << ", worker " << pid << ")\n";
+      running.push_back({pid, next, log});
+      ++next;
+    } else {
+      finish_one();
+    }
+  }
+  merge_checks_json(out);
+  int n_pass = 0, n_fail = 0, n_notrun = 0, n_ni = 0, n_error = 0, n_inconclusive = 0;
+  for (const auto& c : cases) {
+    std::string st = "ERROR";
+    std::ifstream in(out / (c.id + ".json"));
+    if (in) {
+      try {
+        st = json::parse(in).value("status", std::string("ERROR"));
+      } catch (const std::exception&) {
+      }
+    }
+    (st == "PASS" ? n_pass : st == "FAIL" ? n_fail : st == "ERROR" ? n_error : st == "INCONCLUSIVE" ? n_inconclusive
+     : st == "NOT RUN" ? n_notrun : n_ni)++;
+  }
+  std::cout << "\n" << cases.size() << " cases (" << tier << " tier, " << jobs << " workers): " << n_pass << " PASS, "
+            << n_fail << " FAIL, " << n_error << " ERROR, " << n_inconclusive << " INCONCLUSIVE, " << n_notrun
+            << " NOT RUN, " << n_ni << " NOT IMPLEMENTED; results in " << out.string() << "\n";
+  if (n_error > 0 || n_error_exit > 0) return kExitError;
+  if (n_fail_exit > 0) return kExitFail;
+  return 0;
+}
+
 int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const std::string& tier_opt,
-            const fs::path& out, bool ctest_mode, bool strict) {
+            const fs::path& out, bool ctest_mode, bool strict, int jobs, const std::vector<std::string>& pass_through) {
   const std::string tier = tier_opt.empty() ? "quick" : tier_opt;
   const std::vector<fs::path> files = select_case_files(ids, paper, !tier_opt.empty() && ids.empty());
   if (files.empty()) throw InputError("run", "no cases selected (give case ids, --paper or --tier)");
   require_output_dir(out, "--out");
   // Validate everything first: a bad case writes nothing.
   std::vector<CaseSpec> cases;
+  std::vector<fs::path> case_files;
   for (const auto& f : files) {
     CaseSpec c = load_case(f, tier);
     if (!tier_opt.empty() && ids.empty() && !c.in_tier(tier)) continue;
     cases.push_back(std::move(c));
+    case_files.push_back(f);
+  }
+  if (jobs > 1 && cases.size() > 1 && !ctest_mode) {
+    return run_cases_in_parallel(case_files, cases, tier, out, strict, jobs, pass_through);
   }
   for (const fs::path& d : {out, fs::path(run_cache_dir())}) {
     if (const std::size_t n = remove_stale_temporaries(d)) {
@@ -897,6 +989,10 @@ int main(int argc, char** argv) {
                   "before anything runs; default 8)");
   run->add_flag("--ctest", ctest_mode, "Exit 77 (skip) when every selected case is NOT IMPLEMENTED");
   run->add_flag("--strict", strict, "Known failures fail the run too");
+  int run_jobs = 1;
+  run->add_option("--jobs", run_jobs,
+                  "Cases run side by side, each in its own process (default 1); with -j threads each: jobs x threads "
+                  "should match the cores");
 
   std::string eval_model;
   std::vector<std::string> eval_args;
@@ -1017,7 +1113,13 @@ int main(int argc, char** argv) {
       set_run_cache_dir(run_cache);
       set_run_cache_stored_only(stored_only);
       set_checkpoint_interval(60.0 * checkpoint_minutes);
-      return cmd_run(run_ids, run_paper, run_tier, run_out, ctest_mode, strict);
+      if (run_jobs < 1 || run_jobs > 256) throw InputError("--jobs", "a number of worker processes in 1..256 (got " + std::to_string(run_jobs) + ")");
+      std::vector<std::string> pass;  // what each worker of --jobs needs besides the case
+      if (!run_cache.empty()) pass.insert(pass.end(), {"--run-cache", run_cache, "--checkpoint-minutes", fmt(checkpoint_minutes, 17)});
+      if (stored_only) pass.push_back("--stored-only");
+      pass.insert(pass.end(), {"--max-memory", fmt(max_memory_gib, 17)});
+      if (threads > 0) pass.insert(pass.end(), {"-j", std::to_string(threads)});
+      return cmd_run(run_ids, run_paper, run_tier, run_out, ctest_mode, strict, run_jobs, pass);
     }
     if (*eval) {
       if (eval_list) return cmd_eval_list(eval_json);

@@ -114,7 +114,7 @@ struct Bar {
 using Scheme = Numerics::StrainUpdate;
 const char* scheme_name(Scheme s) { return s == Scheme::usl ? "USL" : s == Scheme::musl ? "MUSL" : "USAVG"; }
 
-MpmProblem make_bar(const Bar& b, double v0, double pic, bool rollers, Scheme scheme = Scheme::usavg) {
+MpmProblem make_bar(const Bar& b, double v0, double pic, bool rollers, Scheme scheme = Scheme::usl) {
   MpmConfig cfg;
   cfg.grid.dx = b.dx;
   cfg.grid.x0 = -3 * b.dx;

@@ -166,6 +166,20 @@ std::vector<fs::path> select_case_files(const std::vector<std::string>& ids, con
 }
 
 
+// Case statuses of one `cutbench run`, counted, and its summary line.
+struct CaseTally {
+  int pass = 0, fail = 0, error = 0, inconclusive = 0, not_run = 0, not_implemented = 0;
+  void add(const std::string& s) {
+    (s == "PASS" ? pass : s == "FAIL" ? fail : s == "ERROR" ? error : s == "INCONCLUSIVE" ? inconclusive
+     : s == "NOT RUN" ? not_run : not_implemented)++;
+  }
+  void print(std::size_t cases, const std::string& tier_label, const fs::path& out) const {
+    std::cout << "\n" << cases << " cases (" << tier_label << "): " << pass << " PASS, " << fail << " FAIL, " << error
+              << " ERROR, " << inconclusive << " INCONCLUSIVE, " << not_run << " NOT RUN, " << not_implemented
+              << " NOT IMPLEMENTED; results in " << out.string() << "\n";
+  }
+};
+
 // The cases of one `cutbench run` on `jobs` worker processes, each a `cutbench run` of one case
 // into the same results directory (its console lines printed when it ends); the summary and the
 // exit code as one process would give them.
@@ -230,7 +244,7 @@ int run_cases_in_parallel(const std::vector<fs::path>& files, const std::vector<
     }
   }
   merge_checks_json(out);
-  int n_pass = 0, n_fail = 0, n_notrun = 0, n_ni = 0, n_error = 0, n_inconclusive = 0;
+  CaseTally tally;
   for (const auto& c : cases) {
     std::string st = "ERROR";
     std::ifstream in(out / (c.id + ".json"));
@@ -240,13 +254,10 @@ int run_cases_in_parallel(const std::vector<fs::path>& files, const std::vector<
       } catch (const std::exception&) {
       }
     }
-    (st == "PASS" ? n_pass : st == "FAIL" ? n_fail : st == "ERROR" ? n_error : st == "INCONCLUSIVE" ? n_inconclusive
-     : st == "NOT RUN" ? n_notrun : n_ni)++;
+    tally.add(st);
   }
-  std::cout << "\n" << cases.size() << " cases (" << tier << " tier, " << jobs << " workers): " << n_pass << " PASS, "
-            << n_fail << " FAIL, " << n_error << " ERROR, " << n_inconclusive << " INCONCLUSIVE, " << n_notrun
-            << " NOT RUN, " << n_ni << " NOT IMPLEMENTED; results in " << out.string() << "\n";
-  if (n_error > 0 || n_error_exit > 0) return kExitError;
+  tally.print(cases.size(), tier + " tier, " + std::to_string(jobs) + " workers", out);
+  if (tally.error > 0 || n_error_exit > 0) return kExitError;
   if (n_fail_exit > 0) return kExitFail;
   return 0;
 }
@@ -274,7 +285,8 @@ int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const
       std::cerr << "removed " << n << " temporary file(s) of killed runs from " << d.string() << "\n";
     }
   }
-  int unexpected = 0, n_pass = 0, n_fail = 0, n_notrun = 0, n_ni = 0, n_error = 0, n_inconclusive = 0;
+  int unexpected = 0;
+  CaseTally tally;
   bool all_ni = true;
   for (const auto& c : cases) {
     std::cerr << "run " << c.id << " (" << tier << ")\n";
@@ -302,20 +314,13 @@ int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const
       if (!sr.error.empty()) std::cout << "  ERROR " << c.id << " series '" << sr.name << "': " << sr.error << "\n";
     }
     const std::string& s = r.status;
-    (s == "PASS"           ? n_pass
-     : s == "FAIL"         ? n_fail
-     : s == "ERROR"        ? n_error
-     : s == "INCONCLUSIVE" ? n_inconclusive
-     : s == "NOT RUN"      ? n_notrun
-                           : n_ni)++;
+    tally.add(s);
     std::cout << std::left << std::setw(16) << s << c.id << "  (" << r.checks.size() << " checks, "
               << fmt(r.wall_time_s, 3) << " s)\n";
   }
   merge_checks_json(out);
-  std::cout << "\n" << cases.size() << " cases (" << tier << " tier): " << n_pass << " PASS, " << n_fail << " FAIL, "
-            << n_error << " ERROR, " << n_inconclusive << " INCONCLUSIVE, " << n_notrun << " NOT RUN, " << n_ni
-            << " NOT IMPLEMENTED; results in " << out.string() << "\n";
-  if (n_error > 0) return kExitError;
+  tally.print(cases.size(), tier + " tier", out);
+  if (tally.error > 0) return kExitError;
   if (unexpected > 0) return kExitFail;
   if (ctest_mode && all_ni) return kExitSkip;
   return 0;

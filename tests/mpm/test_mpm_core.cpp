@@ -42,6 +42,19 @@ BOOST_AUTO_TEST_CASE(ugimp_partition_of_unity_and_gradient) {
   }
 }
 
+// A coordinate that is not finite or is astronomically far returns "off the grid" (-1) with zero
+// weights instead of converting an out-of-range double to int (undefined behaviour).
+BOOST_AUTO_TEST_CASE(ugimp_off_grid_for_non_finite_coordinates) {
+  for (double xp : {std::nan(""), HUGE_VAL, -HUGE_VAL, 1e300, -1e300}) {
+    double w[3] = {1.0, 1.0, 1.0}, dw[3] = {1.0, 1.0, 1.0};
+    BOOST_TEST(ugimp_axis(xp, 0.0, 1.0, 0.25, w, dw) == -1);
+    for (int k = 0; k < 3; ++k) {
+      BOOST_TEST(w[k] == 0.0);
+      BOOST_TEST(dw[k] == 0.0);
+    }
+  }
+}
+
 // J2 return mapping in simple shear against the small-strain closed form with linear hardening:
 // tau = G gamma below tau_y = sigma_y0/sqrt(3), then d tau/d gamma = G (Ep/3) / (G + Ep/3).
 BOOST_AUTO_TEST_CASE(j2_simple_shear_closed_form) {

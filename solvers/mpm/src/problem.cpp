@@ -278,6 +278,17 @@ bool MpmProblem::compute_shape(std::size_t p) {
   return true;
 }
 
+template <class Add, class Store>
+void MpmProblem::reduce_node_buffers(std::size_t nfield, Add&& add, Store&& store) {
+#pragma omp for schedule(static)
+  for (long il = 0; il < static_cast<long>(nfield); ++il) {
+    const auto i = static_cast<std::size_t>(il);
+    NodeData acc = tbuf_[0][i];
+    for (std::size_t t = 1; t < tbuf_.size(); ++t) add(i, acc, tbuf_[t][i]);
+    store(i, acc);
+  }
+}
+
 void MpmProblem::particles_to_grid(bool with_forces, bool count) {
   const long np = static_cast<long>(x_.size());
   std::fill(thread_sum_.begin(), thread_sum_.end(), 0.0);
@@ -360,28 +371,25 @@ void MpmProblem::particles_to_grid(bool with_forces, bool count) {
       }
     }
     thread_sum_[static_cast<std::size_t>(tid)] = ke_particles;
-    // implicit barrier; reduce buffers in fixed thread order
-#pragma omp for schedule(static)
-    for (long il = 0; il < static_cast<long>(nsz); ++il) {
-      const auto i = static_cast<std::size_t>(il);
-      NodeData acc = tbuf_[0][i];
-      for (std::size_t t = 1; t < tbuf_.size(); ++t) {
-        const NodeData& o = tbuf_[t][i];
-        acc.m += o.m;
-        acc.px += o.px;
-        acc.py += o.py;
-        acc.fx += o.fx;
-        acc.fy += o.fy;
-        acc.mx += o.mx;
-        acc.my += o.my;
-        if (ext) {
-          const bool rig_field = i >= 2 * static_cast<std::size_t>(nn_);
-          acc.e0 = rig_field ? std::min(acc.e0, o.e0) : std::max(acc.e0, o.e0);
-          acc.e1 = rig_field ? std::min(acc.e1, o.e1) : std::max(acc.e1, o.e1);
-        }
-      }
-      nodes_[i] = acc;
-    }
+    // implicit barrier; the rigid field's extents reduce with min, the material fields' with max
+    const std::size_t nmat = 2 * static_cast<std::size_t>(nn_);
+    reduce_node_buffers(
+        nsz,
+        [&](std::size_t i, NodeData& acc, const NodeData& o) {
+          acc.m += o.m;
+          acc.px += o.px;
+          acc.py += o.py;
+          acc.fx += o.fx;
+          acc.fy += o.fy;
+          acc.mx += o.mx;
+          acc.my += o.my;
+          if (ext) {
+            const bool rig_field = i >= nmat;
+            acc.e0 = rig_field ? std::min(acc.e0, o.e0) : std::max(acc.e0, o.e0);
+            acc.e1 = rig_field ? std::min(acc.e1, o.e1) : std::max(acc.e1, o.e1);
+          }
+        },
+        [&](std::size_t i, const NodeData& acc) { nodes_[i] = acc; });
   }
   frozen_count_ = frozen;
   if (!count) return;
@@ -585,11 +593,12 @@ void MpmProblem::grid_update() {
   }
   audit_.tool_work += au[0];
   audit_.feedback_loss += au[1];
-  // the momentum the tool's contact imposed over the step: here and on the extrapolated momenta
-  // at the step's start (USAVG), the paper's "summing the momentum changes imposed by the contact
-  // algorithm on the rigid tool"
-  forces_.total = (imp + imp_extrap_) / dt;
-  forces_.below = (impb + imp_extrap_below_) / dt;
+  // the paper's "summing the momentum changes imposed by the contact algorithm on the rigid tool":
+  // those of the momentum update only, as NairnMPM sums them (its rigid-contact routine adds the
+  // contact force only in the momentum-update pass; the contact on the extrapolated momenta of
+  // USAVG does work, counted in the audit, but is not part of the force)
+  forces_.total = imp / dt;
+  forces_.below = impb / dt;
   forces_.normal_below = -forces_.below.dot(ct.n_below);
   // feedback damping on grid kinetic energy
   const auto& fb = cfg_.damping;
@@ -784,17 +793,16 @@ void MpmProblem::remap_momenta() {
         }
       }
     }
-#pragma omp for schedule(static)
-    for (long il = 0; il < nfield; ++il) {
-      const auto i = static_cast<std::size_t>(il);
-      double px = tbuf_[0][i].px, py = tbuf_[0][i].py;
-      for (std::size_t t = 1; t < tbuf_.size(); ++t) {
-        px += tbuf_[t][i].px;
-        py += tbuf_[t][i].py;
-      }
-      nodes_[i].px = px;
-      nodes_[i].py = py;
-    }
+    reduce_node_buffers(
+        static_cast<std::size_t>(nfield),
+        [](std::size_t, NodeData& acc, const NodeData& o) {
+          acc.px += o.px;
+          acc.py += o.py;
+        },
+        [&](std::size_t i, const NodeData& acc) {
+          nodes_[i].px = acc.px;
+          nodes_[i].py = acc.py;
+        });
 #pragma omp for schedule(static)
     for (long nl = 0; nl < nn_; ++nl) {
       Eigen::Vector2d pm[2], imp, impb;
@@ -842,17 +850,9 @@ void MpmProblem::constrain_extrapolated(bool count, double t) {
       nd.py = pm[f].y();
     }
     node_audit_[n] = Eigen::Vector2d(imp.dot(V), 0.0);
-    imp_[n] = imp;
-    imp_below_[n] = impb;
   }
   Eigen::Vector2d au = Eigen::Vector2d::Zero();
-  imp_extrap_.setZero();
-  imp_extrap_below_.setZero();
-  for (std::size_t n = 0; n < nnz; ++n) {
-    au += node_audit_[n];
-    imp_extrap_ += imp_[n];
-    imp_extrap_below_ += imp_below_[n];
-  }
+  for (std::size_t n = 0; n < nnz; ++n) au += node_audit_[n];
   if (count) audit_.tool_work += au[0];
   const long np = static_cast<long>(x_.size());
 #pragma omp parallel for schedule(static) num_threads(nthreads_)
@@ -921,17 +921,16 @@ void MpmProblem::usavg_half(bool first) {
         }
       }
     }
-#pragma omp for schedule(static)
-    for (long il = 0; il < static_cast<long>(nfield); ++il) {
-      const auto i = static_cast<std::size_t>(il);
-      double fx = tbuf_[0][i].fx, fy = tbuf_[0][i].fy;
-      for (std::size_t t = 1; t < tbuf_.size(); ++t) {
-        fx += tbuf_[t][i].fx;
-        fy += tbuf_[t][i].fy;
-      }
-      nodes_[i].fx = fx;
-      nodes_[i].fy = fy;
-    }
+    reduce_node_buffers(
+        nfield,
+        [](std::size_t, NodeData& acc, const NodeData& o) {
+          acc.fx += o.fx;
+          acc.fy += o.fy;
+        },
+        [&](std::size_t i, const NodeData& acc) {
+          nodes_[i].fx = acc.fx;
+          nodes_[i].fy = acc.fy;
+        });
   }
 }
 

@@ -244,6 +244,11 @@ private:
   void grid_update();
   void grid_to_particles();
   void remap_momenta();  // MUSL: particle momenta -> grid -> contact/BCs -> vstrain_
+  // Sums the per-thread node buffers tbuf_ over the first nfield node slots in fixed thread order
+  // (deterministic for a given thread count): add(i, acc, other) accumulates, store(i, acc) writes node
+  // i. An orphaned worksharing loop: called by every thread of an enclosing parallel region.
+  template <class Add, class Store>
+  void reduce_node_buffers(std::size_t nfield, Add&& add, Store&& store);
   // Node n's strain velocities vstrain_ from its momenta with tool and crack contact (when
   // `contact`) and the fixed components applied to a copy: the constrained momenta and the tool's
   // impulse out.
@@ -307,7 +312,6 @@ private:
   double alpha_fb_ = 0.0;
   double mass_deformable_ = 0.0;
   EnergyAudit audit_;
-  Eigen::Vector2d imp_extrap_{0.0, 0.0}, imp_extrap_below_{0.0, 0.0};  // USAVG: contact on the extrapolated momenta
   double initial_energy_ = 0.0;  // kinetic + strain energy at setup (the balance starts from it)       // grid kinetic energy after the last grid update
   bool extrapolated_ = false;  // USAVG: nodes_, vstrain_ and L*_ hold the extrapolation of the current particles
 };

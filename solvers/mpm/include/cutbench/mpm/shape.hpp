@@ -38,9 +38,16 @@ struct UgimpGrid {
 
 // Weights of the 3 nodes i0, i0+1, i0+2 along one axis for a particle at coordinate xp. Returns
 // i0. Nodes outside |r| < dx + lp get weight 0. The same function as ugimp_1d, written in cell
-// units rho = r/dx (S(rho) and dS/dr = dS/drho / dx).
+// units rho = r/dx (S(rho) and dS/dr = dS/drho / dx). A coordinate that is not finite or lies
+// further than kFarCells cells from the origin returns -1 (off the grid) with zero weights, so that
+// no out-of-range value is converted to int.
 inline int ugimp_axis(double xp, const UgimpGrid& g, double w[3], double dw[3]) {
+  constexpr double kFarCells = 1e9;
   const double u = (xp - g.x0) * g.inv_dx;
+  if (!(u > -kFarCells && u < kFarCells)) {  // also false for NaN
+    for (int k = 0; k < 3; ++k) w[k] = dw[k] = 0.0;
+    return -1;
+  }
   const double c = std::floor(u);
   const int i0 = static_cast<int>(c) - (u - c < 0.5 ? 1 : 0);
   for (int k = 0; k < 3; ++k) {

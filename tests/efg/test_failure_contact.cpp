@@ -14,6 +14,7 @@
 
 using namespace cutbench::efg;
 namespace an = cutbench::analytic;
+namespace tt = boost::test_tools;
 
 namespace {
 const double kPi = std::acos(-1.0);
@@ -201,6 +202,47 @@ BOOST_AUTO_TEST_CASE(mode_factor_degradation) {
     const Eigen::Matrix3d K = s.degraded_stiffness({1.0, 0.0, 0.0}, {1, 0});
     const Orthotropic o = scaled(0.01, 1.0, 0.01, 0.01);
     BOOST_TEST((K - o.Qbar(0.3)).norm() < 1e-12 * o.Qbar(0.3).norm());
+  }
+}
+
+// The damage matrix stores each failure index as its running maximum (capped at 1). With
+// proportional growth a mode's moduli are scaled by 1 - d (1 - f) as soon as its index d rises, and
+// stay so on unloading; with growth at failure the index is stored but the stiffness is untouched
+// below 1. Uniaxial fibre tension at half the strength (maximum stress: d = 0.25), theta = 0.
+BOOST_AUTO_TEST_CASE(damage_index_and_proportional_growth) {
+  const Orthotropic m;
+  const Discretisation d = rectangle(0.004, 0.002, 9, 5, 2.5, 0.2, 1);
+  const Eigen::Matrix3d Q = m.Q();
+  const double e = 0.5 * 697.8e6 / m.E1, r = -Q(0, 1) / Q(1, 1);
+  const Eigen::Vector3d eps(e, r * e, 0.0);
+  for (DamageGrowth growth : {DamageGrowth::at_failure, DamageGrowth::proportional}) {
+    const bool prop = growth == DamageGrowth::proportional;
+    ExplicitOptions opt;
+    opt.kinematics = Kinematics::small_strain;
+    opt.failure.enabled = true;
+    opt.failure.criterion = an::Criterion::max_stress;
+    opt.failure.lamina = gfrp_lamina();
+    opt.failure.degradation = Degradation::mode_factors;
+    opt.failure.growth = growth;
+    ExplicitEFG s(d, m, 0.0, opt);
+    s.set_displacement(homogeneous(d, e, r * e, 0.0));
+    // the trial stress of the undamaged material gives the index (sigma11 / X_T)^2 = 0.25
+    BOOST_TEST(s.failure_index(0)[fibre_damage] == 0.25, tt::tolerance(1e-9));
+    BOOST_TEST(s.damage(0)[fibre_damage] == 0.0);
+    const double k = prop ? 1.0 - 0.25 * (1.0 - 0.07) : 1.0;
+    Orthotropic o = m;
+    o.E1 *= k;
+    o.E2 *= k;
+    o.G12 *= k;
+    o.nu12 *= k;
+    const Eigen::Vector3d expected = o.Qbar(0.0) * eps;
+    BOOST_TEST((s.pk2(0) - expected).norm() < 1e-9 * expected.norm(), (prop ? "proportional" : "at failure"));
+    // unloading to half the strain: the index and (proportional) the degraded stiffness remain
+    s.set_displacement(homogeneous(d, 0.5 * e, 0.5 * r * e, 0.0));
+    BOOST_TEST(s.failure_index(0)[fibre_damage] == 0.25, tt::tolerance(1e-9));
+    // (the degraded stiffness gives sigma22 != 0 at this strain, so the matrix index grows a
+    // little on reloading: 3e-6 of the stress)
+    BOOST_TEST((s.pk2(0) - 0.5 * expected).norm() < 1e-4 * expected.norm());
   }
 }
 
@@ -468,15 +510,32 @@ BOOST_AUTO_TEST_SUITE(efg_checkpoint)
 
 namespace {
 CuttingSetup checkpoint_cut() {
-  CuttingSetup s;  // the kahwash2018 quick mesh at 30 deg, LaRC02: to chip completion
+  CuttingSetup s;  // the kahwash2018 quick mesh at 75 deg, LaRC02, the paper's failure model: to chip completion
   s.lamina = gfrp_lamina();
-  s.theta = 30.0 * kPi / 180.0;
+  s.theta = 75.0 * kPi / 180.0;
+  s.S_sigma = 158.9e6;  // Table 1 at 75 deg
+  s.S_tau = 85.1e6;
+  s.update_interval = 20;  // the cases' reference updates (updated Lagrangian state across checkpoints)
   s.spacing = 0.0625e-3;
   s.work_length = 1.0e-3;
   s.work_height = 0.5e-3;
   s.time_scale = 200.0;
   s.travel = 0.15e-3;
   s.snapshots = 3;
+  return s;
+}
+
+// The erosion options (kept for comparison): eroded Gauss points, released nodes and the
+// separation guard across checkpoints, total Lagrangian, at 30 deg.
+CuttingSetup erosion_cut() {
+  CuttingSetup s = checkpoint_cut();
+  s.theta = 30.0 * kPi / 180.0;
+  s.S_sigma = s.S_tau = 0.0;
+  s.growth = DamageGrowth::at_failure;
+  s.erosion = Erosion::fibre_and_matrix;
+  s.collapse_ratio = 0.1;
+  s.completion_guard = CompletionGuard::separation;
+  s.kinematics = Kinematics::total_lagrangian;
   return s;
 }
 
@@ -552,9 +611,13 @@ CuttingResult require_resume_equals_uninterrupted(const CuttingSetup& s, const s
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(interrupted_after_every_checkpoint_equals_uninterrupted) {
-  // to chip completion: contact, failure, erosion, the drop detector and its guard, snapshots
+  // to chip completion: contact, damage growth, reference updates, the drop detector and its
+  // guard, snapshots; and the same with the erosion options (eroded points, released nodes)
   const CuttingSetup complete = checkpoint_cut();
   BOOST_TEST(require_resume_equals_uninterrupted(complete, "completion").t_complete > 0.0);
+  const CuttingResult eroded = require_resume_equals_uninterrupted(erosion_cut(), "erosion");
+  BOOST_TEST(eroded.t_complete > 0.0);
+  BOOST_TEST(eroded.eroded > 0u);
   // detector off, 0.08 mm of travel: the cut line grows by opaque segments after checkpoints, so
   // the resumed shape functions must see them (rebuilt from the stored segments)
   CuttingSetup longer = checkpoint_cut();

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "cutbench/common/errors.hpp"
 #include "cutbench/efg/discretisation.hpp"
 
 using namespace cutbench::efg;
@@ -173,6 +174,21 @@ BOOST_AUTO_TEST_CASE(cell_list_matches_brute_force) {
     for (std::size_t b = a + 1; b < d.nodes.size(); ++b) brute = std::min(brute, (d.nodes[a] - d.nodes[b]).norm());
   }
   BOOST_TEST(std::abs(cl.min_pair_distance() - brute) < 1e-15);
+}
+
+// A node thrown far off the model (a blow-up) or a non-finite position is reported as a numerical
+// fault instead of sizing a grid of cells to it (which ran out of memory).
+BOOST_AUTO_TEST_CASE(cell_list_refuses_blown_up_points) {
+  std::vector<Vec2> pts;
+  for (int i = 0; i < 10; ++i) {
+    for (int j = 0; j < 10; ++j) pts.emplace_back(1e-4 * i, 1e-4 * j);
+  }
+  CellList cl;
+  BOOST_CHECK_NO_THROW(cl.build(pts, 1e-4));
+  pts.back() = Vec2(900.0, -200.0);
+  BOOST_CHECK_THROW(cl.build(pts, 1e-4), cutbench::NumericalError);
+  pts.back() = Vec2(std::nan(""), 0.0);
+  BOOST_CHECK_THROW(cl.build(pts, 1e-4), cutbench::NumericalError);
 }
 
 BOOST_AUTO_TEST_CASE(background_quadrature_integrates_area) {

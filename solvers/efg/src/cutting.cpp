@@ -114,7 +114,7 @@ CuttingSnapshot read_cutting_snapshot(BinaryReader& r) {
 
 namespace {
 // The explicit solver's options of a cutting run: kinematics, time step, failure and erosion.
-ExplicitOptions explicit_options(const CuttingSetup& s) {
+ExplicitOptions explicit_options(const CuttingSetup& s, double y_cut) {
   ExplicitOptions opt;
   opt.kinematics = s.kinematics;
   opt.update_interval = s.update_interval;
@@ -124,6 +124,10 @@ ExplicitOptions explicit_options(const CuttingSetup& s) {
   opt.failure.lamina = s.lamina;
   opt.failure.residual = s.residual;
   opt.failure.degradation = s.degradation;
+  opt.failure.growth = s.growth;
+  opt.failure.S_sigma = s.S_sigma;
+  opt.failure.S_tau = s.S_tau;
+  opt.failure.zone_y_min = y_cut;  // the cutting zone: the layer the tool removes (above the cut line)
   opt.erosion = s.erosion;
   opt.collapse_ratio = s.collapse_ratio;
   return opt;
@@ -216,7 +220,7 @@ public:
         // Fibres along (cos theta, sin theta) with the tool moving +x: for 0 < theta < 90 deg they
         // rise ahead of the tool from the edge to the free surface, the path along which the
         // paper's chips separate (sections 5.2 and 6).
-        solver_(d_, s.material, s.theta, explicit_options(s)),
+        solver_(d_, s.material, s.theta, explicit_options(s, l_.yE)),
         xf_(l_.x0 - 0.25 * l_.hx), V_(s.speed * s.time_scale), gap_(0.25 * l_.hx), E_(l_.x0 - gap_, l_.yE),
         tool_(cutting_tool(s, E_, V_, l_.Ly)), paths_(reference_gauss(d_), l_.hx, l_.hy, l_.yE, l_.Ly),
         cut_tip_(xf_) {

@@ -146,7 +146,12 @@ std::vector<GaussPoint> line_gauss(const Vec2& a, const Vec2& b, int nseg, int n
 
 std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const std::vector<Vec2>& nodes,
                                        const std::vector<double>& support, const WeightParams& weight,
-                                       bool derivatives, const std::vector<Segment>& opaque) {
+                                       bool derivatives, const std::vector<Segment>& opaque,
+                                       const VisibilityFrame& frame) {
+  const bool framed = frame.points != nullptr && frame.nodes != nullptr;
+  if (framed && (frame.points->size() != points.size() || frame.nodes->size() != nodes.size())) {
+    throw NumericalError("EFG: visibility frame sizes differ from the points and nodes");
+  }
   const double dmax = *std::max_element(support.begin(), support.end());
   CellList cl;
   cl.build(nodes, dmax);
@@ -160,7 +165,11 @@ std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const st
 #pragma omp for schedule(static)
     for (long k = 0; k < n; ++k) {
       cl.query(points[k], dmax, cand);
-      visibility_filter(points[k], nodes, opaque, cand);
+      if (framed) {
+        visibility_filter((*frame.points)[static_cast<std::size_t>(k)], *frame.nodes, opaque, cand);
+      } else {
+        visibility_filter(points[k], nodes, opaque, cand);
+      }
       if (!mls_shape(points[k], nodes, support, cand, weight, out[k], derivatives)) {
 #pragma omp critical
         {

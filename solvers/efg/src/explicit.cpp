@@ -34,10 +34,12 @@ ExplicitEFG::ExplicitEFG(const Discretisation& d, const Orthotropic& mat, double
   std::vector<Vec2> pts;
   for (const auto& g : d.gauss) pts.push_back(g.x);
   auto sf = shape_functions(pts, X0_, support_, opt_.weight, true);
+  Xg0_ = pts;
   gp_.resize(pts.size());
   for (std::size_t g = 0; g < pts.size(); ++g) {
     gp_[g].xr = pts[g];
     gp_[g].Vr = d.gauss[g].weight * opt_.thickness;
+    gp_[g].cutting_zone = pts[g].y() > opt_.failure.zone_y_min;
     gp_[g].sd = std::move(sf[g]);
     // Lumped mass: row sums of the consistent mass of Eq 35, M_I = sum_G rho V_G phi_I(x_G).
     for (std::size_t a = 0; a < gp_[g].sd.nodes.size(); ++a) {
@@ -126,13 +128,13 @@ void ExplicitEFG::first_piola(GP& q, Mat2& P, bool small, bool failure) {
   if (small) {
     const Mat2 H = q.F - Mat2::Identity();
     q.E = Eigen::Vector3d(H(0, 0), H(1, 1), H(0, 1) + H(1, 0));
-    q.S = (q.damage[0] + q.damage[1] + q.damage[2] > 0.0 ? q.Qd : Qbar_) * q.E;
+    q.S = (q.degraded ? q.Qd : Qbar_) * q.E;
     if (failure && update_damage(q)) q.S = q.Qd * q.E;
     P = voigt_to_tensor(q.S);
   } else {
     const Mat2 C = q.F.transpose() * q.F;
     q.E = Eigen::Vector3d(0.5 * (C(0, 0) - 1.0), 0.5 * (C(1, 1) - 1.0), C(0, 1));  // engineering shear
-    q.S = (q.damage[0] + q.damage[1] + q.damage[2] > 0.0 ? q.Qd : Qbar_) * q.E;
+    q.S = (q.degraded ? q.Qd : Qbar_) * q.E;
     if (failure && update_damage(q)) q.S = q.Qd * q.E;
     const Mat2 S = voigt_to_tensor(q.S);
     P = Finc * (q.Fr * S * q.Fr.transpose()) / q.Fr.determinant();
@@ -183,93 +185,111 @@ double larc02_matrix_compression_bound(double s22, double t12, const analytic::L
 
 bool ExplicitEFG::update_damage(GP& q) const {
   const FailureOptions& fo = opt_.failure;
-  const bool has_interface = fo.criterion == analytic::Criterion::max_stress || (fo.S_sigma > 0.0 && fo.S_tau > 0.0);
+  const bool proportional = fo.growth == DamageGrowth::proportional;
+  const bool zone = fo.S_sigma > 0.0 && fo.S_tau > 0.0 && q.cutting_zone;  // Table 1 strengths here
+  const bool has_interface = fo.criterion == analytic::Criterion::max_stress || zone;
   if (q.damage[0] + q.damage[1] >= 2.0 && (!has_interface || q.damage[2] >= 1.0)) return false;
   const Eigen::Vector3d s12 = T_ * q.S;  // Eq 52
-  // Screen: with every material-frame component below 0.2 x the smallest strength, no index of
-  // the three criteria can reach 1 (each is at most quadratic in stress/strength with O(1)
-  // coefficients; LaRC02 kinking <= 0.4 (1 + eta_L) < 1); skips the costly LaRC02 search.
-  const double smin = std::min({fo.lamina.Y_T, fo.lamina.Y_C, fo.lamina.S_L,
-                                fo.S_sigma > 0.0 ? fo.S_sigma : HUGE_VAL, fo.S_tau > 0.0 ? fo.S_tau : HUGE_VAL});
-  if (s12.cwiseAbs().maxCoeff() < 0.2 * smin) return false;
+  // Screen (at_failure): with every material-frame component below 0.2 x the smallest strength,
+  // no index of the three criteria can reach 1 (each is at most quadratic in stress/strength with
+  // O(1) coefficients; LaRC02 kinking <= 0.4 (1 + eta_L) < 1); skips the costly LaRC02 search.
+  // Proportional growth needs every index, so it is not screened.
+  const double smin = std::min({fo.lamina.Y_T, fo.lamina.Y_C, fo.lamina.S_L, zone ? fo.S_sigma : HUGE_VAL,
+                                zone ? fo.S_tau : HUGE_VAL});
+  if (!proportional && s12.cwiseAbs().maxCoeff() < 0.2 * smin) return false;
   analytic::PlaneStress ps;
   ps.s11 = s12(0);
   ps.s22 = s12(1);
   ps.t12 = s12(2);
   analytic::FailureIndices fi;
   if (fo.criterion == analytic::Criterion::larc02) {
-    // The matrix-compression search is needed only while the matrix is intact and the bound does
-    // not exclude failure (with sigma11 < -Y_C LaRC02 uses misalignment-frame stresses: search).
+    // The matrix-compression search is needed only while the matrix index can still rise: the
+    // matrix intact (at_failure) or below its stored index (proportional), and the bound not
+    // excluding it (with sigma11 < -Y_C LaRC02 uses misalignment-frame stresses: search).
+    const double floor = proportional ? q.index[matrix_damage] : 1.0;
     const bool search = q.damage[matrix_damage] < 1.0 &&
-                        (ps.s11 < -fo.lamina.Y_C || larc02_matrix_compression_bound(ps.s22, ps.t12, fo.lamina) >= 1.0);
+                        (ps.s11 < -fo.lamina.Y_C || larc02_matrix_compression_bound(ps.s22, ps.t12, fo.lamina) >= floor);
     fi = analytic::larc02_failure(ps, fo.lamina, search);
   } else {
     fi = analytic::failure_indices(fo.criterion, ps, fo.lamina);
   }
-  double interface = 0.0;
-  if (!std::isnan(fi.shear)) {
-    interface = fi.shear;
-  } else if (fo.S_sigma > 0.0 && fo.S_tau > 0.0) {
+  // Interface: the criterion's own shear index (maximum stress) and, when the interface strengths
+  // are given, (<sigma22>/S_sigma)^2 + (tau12/S_tau)^2; the larger of the two.
+  double interface = std::isnan(fi.shear) ? 0.0 : fi.shear;
+  if (zone) {
     const double sn = std::max(0.0, ps.s22) / fo.S_sigma, st = ps.t12 / fo.S_tau;
-    interface = sn * sn + st * st;
+    interface = std::max(interface, sn * sn + st * st);
   }
   const double idx[3] = {fi.fibre, fi.matrix, interface};
-  bool changed = false;
+  bool failed = false, grown = false;
   for (int k = 0; k < 3; ++k) {
-    if (q.damage[k] < 1.0 && idx[k] >= 1.0) {
-      q.damage[k] = 1.0;
+    // the stored running maximum: a failed mode (index 1) stays as it failed; NaN (not
+    // evaluated) never replaces it
+    if (q.index[k] >= 1.0 || !(idx[k] > q.index[k])) continue;
+    const double d = std::min(1.0, idx[k]);
+    q.index[k] = d;
+    grown = true;
+    // the sign of the stress when the index last rose (proportional) or at failure
+    if (proportional || d >= 1.0) {
       if (k == fibre_damage) q.compressive[0] = ps.s11 < 0.0;
       if (k == matrix_damage) q.compressive[1] = ps.s22 < 0.0;
-      changed = true;
+    }
+    if (d >= 1.0) {
+      q.damage[k] = 1.0;
+      failed = true;
     }
   }
-  if (changed) q.Qd = degraded_stiffness(q.damage, q.compressive);
+  const bool changed = proportional ? grown : failed;
+  if (changed) {
+    q.Qd = degraded_stiffness(proportional ? q.index : q.damage, q.compressive);
+    q.degraded = true;
+  }
   return changed;
 }
+
+namespace {
+// Modulus multiplier of a mode with damage d and degraded factor f: f when failed (d >= 1; the
+// factor itself, bit for bit), 1 - d (1 - f) in between, 1 when undamaged.
+double degradation_multiplier(double d, double f) {
+  if (d >= 1.0) return f;
+  return d > 0.0 ? 1.0 - d * (1.0 - f) : 1.0;
+}
+}  // namespace
 
 Eigen::Matrix3d ExplicitEFG::degraded_stiffness(const std::array<double, 3>& damage,
                                                 const std::array<char, 2>& compressive) const {
   Orthotropic m = mat_;
   const double r = opt_.failure.residual;
+  const double df = damage[fibre_damage], dm = damage[matrix_damage], di = damage[interface_damage];
+  // scale the selected moduli (E1, E2, G12, nu12) of a mode with damage d and factor f
+  auto degrade = [&m](double d, double f, std::array<bool, 4> which) {
+    if (!(d > 0.0)) return;
+    const double k = degradation_multiplier(d, f);
+    if (which[0]) m.E1 *= k;
+    if (which[1]) m.E2 *= k;
+    if (which[2]) m.G12 *= k;
+    if (which[3]) m.nu12 *= k;
+  };
   if (opt_.failure.degradation == Degradation::mode_factors) {
     const ModeFactors& f = opt_.failure.factors;
-    if (damage[fibre_damage] > 0.0) {
-      const double k = compressive[0] ? f.fibre_compression : f.fibre_tension;
-      m.E1 *= k;
-      m.E2 *= k;
-      m.G12 *= k;
-      m.nu12 *= k;
-    }
-    if (damage[matrix_damage] > 0.0) {
-      const double k = compressive[1] ? f.matrix_compression : f.matrix_tension;
-      m.E2 *= k;
-      m.G12 *= k;
-    }
-    if (damage[interface_damage] > 0.0) {
-      m.G12 *= r;
-      m.nu12 *= r;
-    }
-    return m.Qbar(theta_);
+    degrade(df, compressive[0] ? f.fibre_compression : f.fibre_tension, {true, true, true, true});
+    degrade(dm, compressive[1] ? f.matrix_compression : f.matrix_tension, {false, true, true, false});
+    degrade(di, r, {false, false, true, true});
+  } else {
+    degrade(df, r, {true, false, true, true});
+    degrade(dm, r, {false, true, true, true});
+    degrade(di, r, {false, false, true, false});
   }
-  if (damage[fibre_damage] > 0.0) {
-    m.E1 *= r;
-    m.G12 *= r;
-    m.nu12 *= r;
-  }
-  if (damage[matrix_damage] > 0.0) {
-    m.E2 *= r;
-    m.G12 *= r;
-    m.nu12 *= r;
-  }
-  if (damage[interface_damage] > 0.0) m.G12 *= r;
   return m.Qbar(theta_);
 }
 
 void ExplicitEFG::set_damage(std::size_t g, const std::array<double, 3>& damage,
                              const std::array<char, 2>& compressive) {
   gp_.at(g).damage = damage;
+  gp_[g].index = damage;
   gp_[g].compressive = compressive;
   gp_[g].Qd = degraded_stiffness(damage, compressive);
+  gp_[g].degraded = damage[0] + damage[1] + damage[2] > 0.0;
 }
 
 void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
@@ -357,20 +377,20 @@ void ExplicitEFG::update_release() {
 void ExplicitEFG::add_opaque_segment(const Segment& s) {
   opaque_.push_back(s);
   const double dmax = *std::max_element(support_.begin(), support_.end());
-  std::vector<Vec2> pts;
   std::vector<std::size_t> ids;
   const Vec2 ab = s.b - s.a;
   const double L2 = ab.squaredNorm();
+  // the segment is material (initial configuration): the Gauss points near it there; with the
+  // updated Lagrangian form a point's support may have grown since (dmax is the initial largest
+  // support radius; points whose current supports reach further are rare and keep their functions
+  // until the next reference update)
   for (std::size_t g = 0; g < gp_.size(); ++g) {
-    const Vec2& x = gp_[g].xr;
+    const Vec2& x = Xg0_[g];
     const double u = L2 > 0.0 ? std::clamp((x - s.a).dot(ab) / L2, 0.0, 1.0) : 0.0;
-    if ((x - (s.a + u * ab)).norm() < dmax) {
-      pts.push_back(x);
-      ids.push_back(g);
-    }
+    if ((x - (s.a + u * ab)).norm() < dmax) ids.push_back(g);
   }
-  if (pts.empty()) return;
-  auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
+  if (ids.empty()) return;
+  auto sf = gauss_shapes(ids);
   for (std::size_t k = 0; k < ids.size(); ++k) gp_[ids[k]].sd = std::move(sf[k]);
   node_gp_dirty_ = true;
   update_release();
@@ -386,11 +406,20 @@ void ExplicitEFG::update_reference() {
     q.xr = xg;
   }
   xr_ = x_;
-  std::vector<Vec2> pts(gp_.size());
-  for (std::size_t g = 0; g < gp_.size(); ++g) pts[g] = gp_[g].xr;
-  auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
+  std::vector<std::size_t> ids(gp_.size());
+  for (std::size_t g = 0; g < gp_.size(); ++g) ids[g] = g;
+  auto sf = gauss_shapes(ids);
   for (std::size_t g = 0; g < gp_.size(); ++g) gp_[g].sd = std::move(sf[g]);
   node_gp_dirty_ = true;
+}
+
+std::vector<ShapeData> ExplicitEFG::gauss_shapes(const std::vector<std::size_t>& ids) const {
+  std::vector<Vec2> pts(ids.size()), mat(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    pts[k] = gp_[ids[k]].xr;
+    mat[k] = Xg0_[ids[k]];
+  }
+  return shape_functions(pts, xr_, support_, opt_.weight, true, opaque_, VisibilityFrame{&mat, &X0_});
 }
 
 void ExplicitEFG::apply_bcs(double t) {
@@ -520,10 +549,12 @@ struct GPState {
   Vec2 xr;
   double Vr;
   double damage[3];
+  double index[3];
   char compressive[2];
   char eroded;
+  char degraded;
 };
-constexpr std::uint64_t kStateVersion = 1;
+constexpr std::uint64_t kStateVersion = 2;
 }  // namespace
 
 void ExplicitEFG::save_state(BinaryWriter& w) const {
@@ -540,8 +571,18 @@ void ExplicitEFG::save_state(BinaryWriter& w) const {
   for (std::size_t g = 0; g < gp_.size(); ++g) {
     const GP& q = gp_[g];
     GPState& o = gs[g];
-    o = GPState{q.Fr, q.F, q.E, q.S, q.Qd, q.xr, q.Vr, {q.damage[0], q.damage[1], q.damage[2]},
-                {q.compressive[0], q.compressive[1]}, static_cast<char>(q.eroded)};
+    o = GPState{q.Fr,
+                q.F,
+                q.E,
+                q.S,
+                q.Qd,
+                q.xr,
+                q.Vr,
+                {q.damage[0], q.damage[1], q.damage[2]},
+                {q.index[0], q.index[1], q.index[2]},
+                {q.compressive[0], q.compressive[1]},
+                static_cast<char>(q.eroded),
+                static_cast<char>(q.degraded)};
   }
   w.pods(gs);
   w.pods(opaque_);
@@ -579,8 +620,10 @@ void ExplicitEFG::load_state(BinaryReader& r) {
     q.xr = o.xr;
     q.Vr = o.Vr;
     q.damage = {o.damage[0], o.damage[1], o.damage[2]};
+    q.index = {o.index[0], o.index[1], o.index[2]};
     q.compressive = {o.compressive[0], o.compressive[1]};
     q.eroded = o.eroded != 0;
+    q.degraded = o.degraded != 0;
   }
   opaque_ = r.pods<Segment>();
   nreleased_ = static_cast<std::size_t>(r.u64());
@@ -593,9 +636,9 @@ void ExplicitEFG::load_state(BinaryReader& r) {
   t_ = r.f64();
   tool_force_.x() = r.f64();
   tool_force_.y() = r.f64();
-  std::vector<Vec2> pts(ng);
-  for (std::size_t g = 0; g < ng; ++g) pts[g] = gp_[g].xr;
-  auto sf = shape_functions(pts, xr_, support_, opt_.weight, true, opaque_);
+  std::vector<std::size_t> ids(ng);
+  for (std::size_t g = 0; g < ng; ++g) ids[g] = g;
+  auto sf = gauss_shapes(ids);
   for (std::size_t g = 0; g < ng; ++g) gp_[g].sd = std::move(sf[g]);
   node_gp_dirty_ = true;
 }

@@ -1,5 +1,9 @@
 #include "cutbench/efg/mls.hpp"
 
+#include <sstream>
+
+#include "cutbench/common/errors.hpp"
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -40,9 +44,21 @@ void CellList::build(const std::vector<Vec2>& points, double cell_size) {
     return;
   }
   Vec2 lo = points[0], hi = points[0];
+  bool finite = true;
   for (const auto& p : points) {
+    finite = finite && p.allFinite();
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
+  }
+  // A node thrown far off the model (a blow-up) would make the grid of cells unbounded: report it
+  // as the fault it is. A model's nodes fill their cells at about one per cell; 64 x as many cells
+  // as points (8 x the extent each way) or a non-finite position is not a cutting model any more.
+  const double ncells = (std::floor((hi.x() - lo.x()) / h_) + 1.0) * (std::floor((hi.y() - lo.y()) / h_) + 1.0);
+  if (!finite || !(ncells <= 64.0 * static_cast<double>(points.size()) + 1e6)) {
+    std::ostringstream os;
+    os << "EFG: the nodes spread over (" << lo.x() << ", " << lo.y() << ") - (" << hi.x() << ", " << hi.y()
+       << ") m, far beyond the model: a node was thrown off or is not finite (the run blew up)";
+    throw NumericalError(os.str());
   }
   lo_ = lo;
   nx_ = static_cast<long>(std::floor((hi.x() - lo.x()) / h_)) + 1;

@@ -230,6 +230,10 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
              [](S& s, double v) { s.lamina.Y_C = v; })
         .add(p("S_L", Dim::stress, "in-plane shear strength (Table 2)", 33.1e6, 0, inf),
              [](S& s, double v) { s.lamina.S_L = v; })
+        .add(p("eps1_T", Dim::dimensionless, "fibre tensile failure strain of LaRC02 (Table 2: 2.3 %)", 0.023, 1e-6, 1),
+             [](S& s, double v) { s.lamina.eps1_T = v; })
+        .bind(p("S_sigma", Dim::stress, "interface normal strength (Table 1; 0: no interface index from it)", 0.0, 0, inf), &S::S_sigma)
+        .bind(p("S_tau", Dim::stress, "interface shear strength (Table 1; 0: no interface index from it)", 0.0, 0, inf), &S::S_tau)
         .bind(p(glossary::kDepthOfCut, Dim::length, "depth of cut (Table 3: 0.25 mm)", 0.25e-3, 0, inf), &S::depth)
         .bind(p(glossary::kRakeAngle, Dim::angle, "rake angle (Table 3: 0)", 0.0, -pi / 4, pi / 3), &S::rake)
         .bind(p("work_length", Dim::length, "workpiece length (assumption)", 1.5e-3, 0, inf), &S::work_length)
@@ -248,12 +252,21 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
         .bind(option_param("degradation", "stiffness degradation of failed material",
                               {{"sudden", "failed moduli x residual"}, {"mode_factors", "mode factors of Camanho-Matthews/Tserpes"}},
                               "mode_factors"), &S::degradation)
+        .bind(option_param("damage_growth", "how the failure index degrades the stiffness",
+                              {{"at_failure", "a mode's factor applies when its index reaches 1"},
+                               {"proportional", "moduli scaled by 1 - d (1 - factor) as the index d grows (the paper's damage status)"}},
+                              "proportional"), &S::growth)
         .bind(option_param("erosion", "separation of failed material",
                               {{"none", "no separation"}, {"fibre_and_matrix", "fibre and matrix failed"}, {"either", "fibre or matrix failed"}},
-                              "fibre_and_matrix"), &S::erosion)
+                              "none"), &S::erosion)
         .bind(p("collapse_ratio", Dim::dimensionless,
                    "collapse erosion: failed material whose nodes come closer than this x the initial spacing is eroded (0: off)",
-                   0.1, 0, 0.99), &S::collapse_ratio)
+                   0.0, 0, 0.99), &S::collapse_ratio)
+        .bind(option_param("kinematics", "kinematic description",
+                              {{"small_strain", "linear"}, {"total_lagrangian", "total Lagrangian"},
+                               {"updated_lagrangian", "updated Lagrangian (the paper's)"}},
+                              "updated_lagrangian"), &S::kinematics)
+        .bind(integer_param("update_interval", "updated Lagrangian: steps between reference updates (1: the last configuration, the paper's)", 1, 1, 1e6), &S::update_interval)
         .bind(switch_param("visibility", "visibility criterion across the notch and the cut line", true), &S::visibility)
         .bind(p("drop", Dim::dimensionless, "chip completion: dt below (1 - drop) x its running mean (0: off)", 0.3, 0, 0.99), &S::drop)
         .bind(integer_param("drop_window", "steps of the running mean of dt", 200, 1, 1e6), &S::drop_window)
@@ -261,7 +274,7 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
         .bind(option_param("completion_guard", "when a drop of the time step counts as chip completion",
                               {{"always", "at any drop"}, {"damaged_path", "once damaged Gauss points connect the edge and the free surface"},
                                {"eroded_path", "once eroded Gauss points ahead of the edge connect the edge and the free surface"}},
-                              "eroded_path"), &S::completion_guard)
+                              "damaged_path"), &S::completion_guard)
         .bind(p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0), &S::cfl)
         .bind(integer_param("snapshots", "damage snapshots kept (k/n of the run)", 3, 0, 20), &S::snapshots);
     return decl;

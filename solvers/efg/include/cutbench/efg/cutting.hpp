@@ -45,9 +45,15 @@ struct CuttingSetup {
   double mu = 0.3;               // rake-face friction (paper: function of theta after [63], not given)
   double residual = 0.01;
   Degradation degradation = Degradation::mode_factors;  // see FailureOptions
-  double collapse_ratio = 0.1;  // collapse erosion (ExplicitOptions::collapse_ratio), 0: off
+  DamageGrowth growth = DamageGrowth::proportional;     // see FailureOptions
+  // Interface strengths of Table 1 (0: unused): the interface index (<sigma22>/S_sigma)^2 +
+  // (tau12/S_tau)^2 everywhere in the workpiece (see FailureOptions).
+  double S_sigma = 0.0, S_tau = 0.0;
+  // Paper's model by default: failed material keeps its degraded stiffness (no erosion, no
+  // collapse erosion); both stay selectable for comparison.
+  double collapse_ratio = 0.0;  // collapse erosion (ExplicitOptions::collapse_ratio), 0: off
   double cfl = 0.5;
-  Erosion erosion = Erosion::fibre_and_matrix;
+  Erosion erosion = Erosion::none;
   bool visibility = true;
   // Chip completion (section 5.4): the Eq 56 step falls below (1 - drop) times its running mean
   // over the last `drop_window` steps, or a collapse-erosion event intercepts a step below
@@ -62,9 +68,9 @@ struct CuttingSetup {
   //    edge to the free surface through material ahead of the edge, i.e. the chip is cut off from
   //    the workpiece ("loss of stiffness in the chip as it becomes completely damaged").
   // none: every drop counts (local crushing at the edge of fine meshes fires after a few um).
-  CompletionGuard completion_guard = CompletionGuard::separation;
-  Kinematics kinematics = Kinematics::total_lagrangian;
-  int update_interval = 20;
+  CompletionGuard completion_guard = CompletionGuard::damage_path;
+  Kinematics kinematics = Kinematics::updated_lagrangian;
+  int update_interval = 1;
   int record_every = 20;         // steps per force record (forces averaged over the window)
   int snapshots = 3;             // damage snapshots kept (at k/snapshots of the run)
 };

@@ -40,11 +40,21 @@ std::vector<GaussPoint> line_gauss(const Vec2& a, const Vec2& b, int nseg, int n
 Discretisation notched_rectangle(double Lx, double Ly, int nx, int ny, double support_factor, double notch_x,
                                  double notch_y, int ng = 2);
 
+// Where the visibility criterion is decided: material positions of the points and nodes (the
+// configuration in which the opaque segments are given), when these differ from the positions the
+// shape functions are built on (updated Lagrangian: a crack is a material surface).
+struct VisibilityFrame {
+  const std::vector<Vec2>* points = nullptr;
+  const std::vector<Vec2>* nodes = nullptr;
+};
+
 // Shape functions at each point; throws NumericalError naming the point when the MLS fit fails.
-// With opaque segments the visibility criterion removes hidden nodes from each support.
+// With opaque segments the visibility criterion removes hidden nodes from each support, tested
+// between `frame`'s positions when given, else between `points` and `nodes`.
 std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const std::vector<Vec2>& nodes,
                                        const std::vector<double>& support, const WeightParams& weight,
-                                       bool derivatives = true, const std::vector<Segment>& opaque = {});
+                                       bool derivatives = true, const std::vector<Segment>& opaque = {},
+                                       const VisibilityFrame& frame = {});
 
 // Gauss-Legendre points and weights on [-1, 1] for n = 1..4.
 void gauss_legendre(int n, std::vector<double>& xi, std::vector<double>& w);

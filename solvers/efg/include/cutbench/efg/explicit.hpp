@@ -54,6 +54,13 @@ enum class Kinematics { small_strain, total_lagrangian, updated_lagrangian };
 //      interface (fibre-matrix shear)             -> G12, nu12 x `residual` (0 in the source)
 //    rules of several failed modes are applied in sequence (factors multiply).
 enum class Degradation { sudden = 0, mode_factors = 1 };
+// How the failure index d (Appendix A: 0 no failure, 1 total failure; stored per Gauss point and
+// mode as its running maximum, capped at 1, the paper's damage matrix D) degrades the stiffness:
+//  - at_failure: a mode's moduli take the factor of the degradation scheme when its d reaches 1
+//    (sudden, irreversible: Camanho & Matthews' selective degradation);
+//  - proportional: every modulus of a mode is scaled by 1 - d (1 - factor) as d grows, reaching
+//    the scheme's factor at d = 1 (continuous, irreversible).
+enum class DamageGrowth { at_failure = 0, proportional = 1 };
 struct ModeFactors {
   double fibre_tension = 0.07, fibre_compression = 0.14;
   double matrix_tension = 0.2, matrix_compression = 0.4;
@@ -64,9 +71,13 @@ struct FailureOptions {
   analytic::Lamina lamina;
   double residual = 0.01;  // degraded fraction of a failed modulus
   Degradation degradation = Degradation::sudden;
+  DamageGrowth growth = DamageGrowth::at_failure;
   ModeFactors factors;     // mode_factors scheme
   double S_sigma = 0.0;    // interface normal strength (Table 1), 0: unused
   double S_tau = 0.0;      // interface shear strength (Table 1), 0: unused
+  // The cutting zone where S_sigma, S_tau apply: Gauss points whose initial y exceeds this (the
+  // cutting model: the cut line, i.e. the layer the tool removes); -inf: everywhere.
+  double zone_y_min = -HUGE_VAL;
 };
 // Separation of failed material (solvers/efg/README.md, "Separation"): with `erosion` on, a Gauss
 // point whose fibre and matrix modes have both failed (every modulus degraded) carries no stress
@@ -183,6 +194,11 @@ public:
   Mat2 deformation_gradient(std::size_t g) const { return gp_[g].F; }
   Vec2 gauss_position(std::size_t g) const;
   std::array<double, 3> damage(std::size_t g) const { return gp_[g].damage; }
+  // The failure indices of Gauss point g (fibre, matrix, interface): running maximum, capped at 1
+  // (the paper's damage matrix D). With at_failure growth, indices of stress states screened out
+  // as far below every strength (each material-frame component under 0.2 x the smallest
+  // strength, index below about 0.04-0.16) are not evaluated and leave the stored value as it was.
+  std::array<double, 3> failure_index(std::size_t g) const { return gp_[g].index; }
   // Imposes damage flags on Gauss point g (pre-failed material, tests); the stiffness is degraded
   // as for failure in the run, and erosion applies at the next force evaluation. `compressive`:
   // fibre / matrix failed in compression (mode_factors scheme).
@@ -190,7 +206,8 @@ public:
                   const std::array<char, 2>& compressive = {0, 0});
   // Fibre / matrix of Gauss point g failed in compression (sign of sigma11 / sigma22 at failure).
   std::array<char, 2> compressive(std::size_t g) const { return gp_[g].compressive; }
-  // Degraded x-y stiffness for the given damage state (the undamaged Qbar when none).
+  // Degraded x-y stiffness for the given damage state (the undamaged Qbar when none): a mode with
+  // damage 1 takes its factor, one with damage d in (0, 1) the proportional 1 - d (1 - factor).
   Eigen::Matrix3d degraded_stiffness(const std::array<double, 3>& damage,
                                      const std::array<char, 2>& compressive = {0, 0}) const;
   // Recomputes stresses and internal forces at the current positions (no time advance).
@@ -215,19 +232,25 @@ private:
     Mat2 F = Mat2::Identity();       // current total F
     Eigen::Vector3d E = Eigen::Vector3d::Zero(), S = Eigen::Vector3d::Zero();
     ShapeData sd;                    // shape functions on the reference configuration
-    std::array<double, 3> damage = {0.0, 0.0, 0.0};  // fibre, matrix, interface
+    std::array<double, 3> damage = {0.0, 0.0, 0.0};  // failed flags (0 / 1): fibre, matrix, interface
+    std::array<double, 3> index = {0.0, 0.0, 0.0};   // failure indices, running max capped at 1
     std::array<char, 2> compressive = {0, 0};         // fibre, matrix failed in compression
-    Eigen::Matrix3d Qd = Eigen::Matrix3d::Zero();    // degraded x-y stiffness (when damaged)
+    Eigen::Matrix3d Qd = Eigen::Matrix3d::Zero();    // degraded x-y stiffness (when `degraded`)
+    bool degraded = false;                           // Qd, not the undamaged Qbar, applies
+    bool cutting_zone = true;                        // the interface strengths apply here
     bool eroded = false;                             // separated: carries no stress
   };
   void update_release();
   bool erode_collapsed();           // collapse erosion; true when something was eroded
   double min_active_distance() const;  // smallest distance between active nodes (Eq 56)
-  bool update_damage(GP& q) const;  // true when a new mode failed
+  bool update_damage(GP& q) const;  // true when the stiffness of q changed
   void apply_contact(double dt, std::vector<Vec2>& vhalf);
   void compute_internal_forces();
   void first_piola(GP& q, Mat2& P, bool small, bool failure);  // stress update of one Gauss point
   void update_reference();
+  // Shape functions of the given Gauss points on the reference configuration, with the visibility
+  // decided in the initial (material) configuration, where the opaque segments are given.
+  std::vector<ShapeData> gauss_shapes(const std::vector<std::size_t>& ids) const;
   void build_node_gp();
   void apply_bcs(double t);
 
@@ -243,6 +266,7 @@ private:
   std::vector<double> support_;
   double spacing_ = 0.0;
   std::vector<Vec2> X0_, xr_, x_, v_, a_, fint_, fext_;
+  std::vector<Vec2> Xg0_;  // initial Gauss-point positions (material frame of the visibility)
   std::vector<double> mass_;
   std::vector<GP> gp_;
   std::vector<VelocityBC> bcs_;

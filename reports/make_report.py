@@ -851,11 +851,25 @@ def load_full_records(directory):
 
 
 def runs_summary(fr):
-    """'3 of 30 (1 with a checkpoint)' for the stored full-tier solver runs ('-' without any)."""
+    """'3 of 30 (1 running, 1 with a checkpoint)' for the stored full-tier solver runs ('-' without any)."""
     if not fr or not fr.get("total"):
         return "-"
-    extra = " (%d with a checkpoint)" % fr["checkpoint"] if fr.get("checkpoint") else ""
+    parts = []
+    if fr.get("running"):
+        parts.append("%d running" % fr["running"])
+    if fr.get("checkpoint"):
+        parts.append("%d with a checkpoint" % fr["checkpoint"])
+    extra = " (%s)" % ", ".join(parts) if parts else ""
     return "%d of %d%s" % (fr.get("stored", 0), fr["total"], extra)
+
+
+def runs_in_progress(fr):
+    """'mpm_cutting-....run running, 62 % done; ...' for the runs under way ('' when none)."""
+    out = []
+    for r in (fr or {}).get("in_progress", []):
+        f = r.get("fraction_done", -1)
+        out.append("%s %s%s" % (r["file"], r["state"], ", %d %% done" % int(100 * f) if f is not None and f >= 0 else ""))
+    return "; ".join(out)
 
 
 def tier_label_of(pr, rg, c):
@@ -966,10 +980,10 @@ def case_section(c, pr, rg, root, out_dir, findings):
             len(notes), "".join("<li><i>%s:</i> %s</li>" % (esc(t), esc(n)) for t, n in notes)))
     fr = c.get("full_runs")
     if fr:
-        head.append('<p class="small">Full-tier campaign: %d of %d solver runs stored in '
+        under_way = runs_in_progress(fr)
+        head.append('<p class="small">Full-tier campaign: %s solver runs stored in '
                     '<code>reports/full_tier/runs</code>%s (<code>cutbench runs --case %s</code>).</p>' % (
-                        fr.get("stored", 0), fr.get("total", 0),
-                        ", %d with a checkpoint" % fr["checkpoint"] if fr.get("checkpoint") else "",
+                        esc(runs_summary(fr)), "; under way: " + esc(under_way) if under_way else "",
                         esc(c["case"])))
     head.append("</div>")
     return "".join(head)
@@ -1173,7 +1187,7 @@ def main():
     rrows.append("<tr><th>all</th>%s<th>%s</th></tr>" % (
         "".join("<th class=num>%d</th>" % total["rg"].get(s, 0) for s in ITEM_STATUSES if s != "NOT YET RUN"),
         runs_summary({k: sum((fr or {}).get(k, 0) for _, _, fr in reg_rows)
-                      for k in ("total", "stored", "checkpoint")})))
+                      for k in ("total", "stored", "checkpoint", "running")})))
     body.append('<h2 class="small">Regression, reduced resolution (quick tier, this results directory)</h2>'
                 '<p class="small">The quick tier runs every case at reduced resolution in the main job to catch '
                 'regressions; its statuses are not the paper-resolution verdicts above. Software %s · manifest '

@@ -762,9 +762,16 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
     }
     for (const auto& p : planned) {
       std::string state = planned_run_state(p, stored);
+      double done = -1.0;  // fraction done of a running or checkpointed run (its progress log)
       if (state != "stored" && !p.file.empty()) {  // a live process holds its lock: being computed now
-        const std::string holder = run_lock_holder((fs::path(dir) / p.file).string());
-        if (!holder.empty()) state = "running (" + holder + ")";
+        const std::string run_path = (fs::path(dir) / p.file).string();
+        const std::string holder = run_lock_holder(run_path);
+        if (!holder.empty()) {
+          state = "running (" + holder + ")";
+          done = run_fraction_done(run_path, true);
+        } else if (state == "checkpoint") {  // what a resume starts from
+          done = run_fraction_done(run_path, false);
+        }
       }
       (state == "stored" ? n_stored : state == "checkpoint" ? n_ckpt : state.rfind("running", 0) == 0 ? n_running : n_todo)++;
       json params = json::object();
@@ -773,8 +780,10 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
         params[k] = v;
         if (values[k].size() > 1) distinct += (distinct.empty() ? "" : " ") + k + "=" + fmt(v, 6);
       }
-      runs.push_back({{"series", p.series}, {"point", p.point}, {"solver", p.solver}, {"file", p.file},
-                      {"state", state}, {"params", params}, {"distinct", distinct}});
+      json entry = {{"series", p.series}, {"point", p.point}, {"solver", p.solver}, {"file", p.file},
+                    {"state", state}, {"params", params}, {"distinct", distinct}};
+      if (done >= 0.0) entry["fraction_done"] = done;
+      runs.push_back(std::move(entry));
       items.push_back({c.id + " " + p.series + " " + std::to_string(p.point), p, state});
     }
     all.push_back({{"case", c.id}, {"tier", tier}, {"runs", runs}});
@@ -782,11 +791,14 @@ int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, c
     std::cout << c.id << " (" << tier << "): " << runs.size() << " solver run(s), " << n_stored << " stored, " << n_running
               << " running, " << n_ckpt << " with a checkpoint, " << n_todo << " to compute\n";
     for (const auto& r : runs) {
+      std::string shown = r["state"].get<std::string>();
+      if (r.contains("fraction_done")) {
+        shown += ", " + std::to_string(static_cast<int>(std::floor(100.0 * r["fraction_done"].get<double>()))) + " % done";
+      }
       std::cout << "  " << std::left << std::setw(24) << (r["series"].get<std::string>() + " " +
                                                              std::to_string(r["point"].get<std::size_t>()))
-                << std::setw(static_cast<int>(std::max<std::size_t>(14, r["state"].get<std::string>().size() + 2)))
-                << r["state"].get<std::string>() << std::setw(36) << r["file"].get<std::string>()
-                << r["distinct"].get<std::string>() << "\n";
+                << std::setw(static_cast<int>(std::max<std::size_t>(14, shown.size() + 2))) << shown
+                << std::setw(36) << r["file"].get<std::string>() << r["distinct"].get<std::string>() << "\n";
     }
   }
   if (as_json) std::cout << all.dump(2) << "\n";

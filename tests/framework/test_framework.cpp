@@ -1008,6 +1008,30 @@ BOOST_AUTO_TEST_CASE(run_lock_takes_over_dead_holders_and_waits_for_live_ones) {
   fs::remove_all(dir);
 }
 
+// The progress log of a run being computed into a store: throttled lines "time fraction", read as
+// the last fraction (running) or the last one before a time (a checkpoint's), removed when stored.
+BOOST_AUTO_TEST_CASE(progress_log_gives_the_fraction_done) {
+  const fs::path dir = fs::temp_directory_path() / "cutbench_test_progress";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string run = (dir / "toy-0000000000000002.run").string();
+  BOOST_TEST(run_progress(run, HUGE_VAL) < 0.0);  // nothing recorded
+  {
+    ProgressLog log(run, 0.0);  // every call writes
+    log.note(0.25);
+    log.note(0.5);
+  }
+  BOOST_TEST(run_progress(run, HUGE_VAL) == 0.5);
+  BOOST_TEST(run_progress(run, 0.0) < 0.0);  // nothing written before 1970
+  ProgressLog throttled(run, 3600.0);
+  throttled.note(0.75);  // the first call writes
+  throttled.note(0.9);   // within the interval: skipped
+  BOOST_TEST(run_progress(run, HUGE_VAL) == 0.75);
+  throttled.remove();
+  BOOST_TEST(run_progress(run, HUGE_VAL) < 0.0);
+  fs::remove_all(dir);
+}
+
 // One vocabulary: no model or solver names a shared quantity by a retired name. Beam models keep
 // their own symbols for the beam thickness (not the depth of cut): moment_curvature's h and
 // dcb_energy_release's d.

@@ -1,6 +1,8 @@
 #include "cutbench/framework/run_cache.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstdint>
 #include <cstdio>
@@ -250,6 +252,45 @@ std::string run_lock_holder(const std::string& run_path) {
   std::string host;
   in >> pid >> host;
   return "pid " + std::to_string(pid) + " on " + host;
+}
+
+namespace {
+std::string progress_path(const std::string& run_path) { return run_path.substr(0, run_path.size() - 4) + ".progress"; }
+double unix_now() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+ProgressLog::ProgressLog(std::string run_path, double interval_s)
+    : path_(progress_path(run_path)), interval_s_(interval_s) {}
+
+void ProgressLog::note(double fraction) {
+  const double now = unix_now();
+  if (now - last_ < interval_s_ || !std::isfinite(fraction)) return;
+  last_ = now;
+  std::FILE* f = std::fopen(path_.c_str(), "a");  // a progress line that cannot be written is skipped
+  if (!f) return;
+  std::fprintf(f, "%.0f %.6f\n", now, std::clamp(fraction, 0.0, 1.0));
+  std::fclose(f);
+}
+
+void ProgressLog::remove() { ::unlink(path_.c_str()); }
+
+double run_progress(const std::string& run_path, double not_after) {
+  std::ifstream in(progress_path(run_path));
+  double t = 0.0, f = 0.0, best = -1.0;
+  while (in >> t >> f) {
+    if (t <= not_after) best = f;
+  }
+  return best;
+}
+
+double run_fraction_done(const std::string& run_path, bool running) {
+  if (running) return run_progress(run_path, HUGE_VAL);
+  struct stat st {};
+  const std::string ckpt = run_path.substr(0, run_path.size() - 4) + ".ckpt";
+  if (::stat(ckpt.c_str(), &st) != 0) return -1.0;
+  return run_progress(run_path, static_cast<double>(st.st_mtim.tv_sec) + 1.0);
 }
 
 bool run_in_progress(const std::string& run_path) {

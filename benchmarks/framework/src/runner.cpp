@@ -82,9 +82,13 @@ RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressF
   // solvers that support checkpoints resume from, and write, <run file>.ckpt
   const CheckpointSpec ck{cache_path.substr(0, cache_path.size() - 4) + ".ckpt", key, checkpoint_interval(), false};
   const auto started = std::chrono::steady_clock::now();
+  ProgressLog plog(cache_path);  // the fraction done that `cutbench runs` shows
   {
     CheckpointScope scope(ck);
-    run = sv.run(params, progress);
+    run = sv.run(params, [&](double f, const std::string& msg) {
+      plog.note(f);
+      if (progress) progress(f, msg);
+    });
   }
   if (!problem.empty() && problem.rfind("damaged", 0) == 0) {
     run.notes.push_back("the stored file of this run was " + problem + "; computed again");
@@ -100,6 +104,7 @@ RunOutput solver_run(const SolverSpec& sv, const Values& params, const ProgressF
   try {
     save_run(cache_path, key, run);
     remove_checkpoint(ck);
+    plog.remove();
   } catch (const std::exception& e) {  // the finished run is kept; only its storage failed
     run.notes.push_back(std::string("run cache: not stored (") + e.what() + ")");
   }

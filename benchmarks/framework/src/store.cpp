@@ -278,7 +278,7 @@ void write_manifest(const fs::path& dir) {
   if (fs::is_directory(store)) {
     for (auto& s : scan_run_store(store.string())) stored[s.file] = std::move(s);
   }
-  std::map<std::string, std::set<std::string>> paper_total, paper_done, paper_ckpt;  // distinct runs
+  std::map<std::string, std::set<std::string>> paper_total, paper_done, paper_ckpt, paper_running;  // distinct runs
   json cases = json::array();
   for (const auto& file : discover_case_files(root)) {
     CaseSpec c = load_case(file, "quick");
@@ -297,18 +297,33 @@ void write_manifest(const fs::path& dir) {
       }
     }
     if (!plan.empty()) {
-      std::set<std::string> total, done, ckpt;
+      std::set<std::string> total, done, ckpt, running;
+      json progress = json::array();  // the runs under way: running (lock held) or checkpointed
       for (const auto& p : plan) {
         if (p.file.empty()) continue;  // linked to another series' outputs: not known before running
-        total.insert(p.file);
+        if (!total.insert(p.file).second) continue;
         const std::string state = planned_run_state(p, stored);
-        if (state == "stored") done.insert(p.file);
+        if (state == "stored") {
+          done.insert(p.file);
+          continue;
+        }
+        const std::string run_path = (store / p.file).string();
+        const bool live = run_in_progress(run_path);
+        if (live) running.insert(p.file);
         if (state == "checkpoint") ckpt.insert(p.file);
+        if (live || state == "checkpoint") {
+          progress.push_back({{"file", p.file}, {"state", live ? "running" : "checkpoint"},
+                              {"fraction_done", run_fraction_done(run_path, live)}});
+        }
       }
-      if (!total.empty()) j["full_runs"] = {{"total", total.size()}, {"stored", done.size()}, {"checkpoint", ckpt.size()}};
+      if (!total.empty()) {
+        j["full_runs"] = {{"total", total.size()}, {"stored", done.size()}, {"checkpoint", ckpt.size()},
+                          {"running", running.size()}, {"in_progress", progress}};
+      }
       paper_total[c.paper].insert(total.begin(), total.end());
       paper_done[c.paper].insert(done.begin(), done.end());
       paper_ckpt[c.paper].insert(ckpt.begin(), ckpt.end());
+      paper_running[c.paper].insert(running.begin(), running.end());
     }
     if (!c.claim.empty()) j["claim"] = c.claim;
     j["verdicts"] = case_verdicts(dir, c);
@@ -323,7 +338,10 @@ void write_manifest(const fs::path& dir) {
   m["cases"] = cases;
   json runs = json::object();
   for (const auto& [paper, files] : paper_total) {
-    runs[paper] = {{"total", files.size()}, {"stored", paper_done[paper].size()}, {"checkpoint", paper_ckpt[paper].size()}};
+    runs[paper] = {{"total", files.size()},
+                   {"stored", paper_done[paper].size()},
+                   {"checkpoint", paper_ckpt[paper].size()},
+                   {"running", paper_running[paper].size()}};
   }
   m["full_runs"] = runs;
   write_atomic(dir / "manifest.json", m.dump(1) + "\n");

@@ -69,6 +69,29 @@ bool run_in_progress(const std::string& run_path);
 // Who holds it: "pid P on HOST" while run_in_progress, else "".
 std::string run_lock_holder(const std::string& run_path);
 
+// Progress of a run being computed into a store: `<run>.progress` holds lines "UNIX_TIME FRACTION"
+// (the solver's own fraction done, 0-1), appended at most every `interval_s` seconds while the run
+// computes and removed once it is stored. It is what `cutbench runs` shows as the fraction done of
+// a running run (the last line) and of a checkpointed one (the last line written before the
+// checkpoint), for every solver, without reading the solver's checkpoint format.
+class ProgressLog {
+public:
+  explicit ProgressLog(std::string run_path, double interval_s = 15.0);
+  void note(double fraction);  // cheap when called often (writes only after interval_s)
+  void remove();               // the run is stored
+
+private:
+  std::string path_;
+  double interval_s_;
+  double last_ = -1e300;
+};
+// The fraction done recorded for the run stored at `run_path`: the last line written no later than
+// `not_after` (unix seconds; +inf: the last line), or a negative value when there is none.
+double run_progress(const std::string& run_path, double not_after);
+// The fraction done of a run being computed (`running`: the last line) or of a checkpointed one
+// (the last line written before its checkpoint, where a resume starts); negative when unknown.
+double run_fraction_done(const std::string& run_path, bool running);
+
 // One file of a run store (a run-cache directory such as reports/full_tier/runs): a finished run
 // (`.run`) or the checkpoint of an unfinished one (`.ckpt`), read without running anything.
 struct StoredRun {

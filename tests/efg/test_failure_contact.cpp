@@ -42,6 +42,17 @@ std::vector<Vec2> homogeneous(const Discretisation& d, double exx, double eyy, d
   return u;
 }
 
+// Small-strain maximum-stress failure with the mode-factor degradation (the tests of the factors).
+ExplicitOptions max_stress_mode_factors() {
+  ExplicitOptions opt;
+  opt.kinematics = Kinematics::small_strain;
+  opt.failure.enabled = true;
+  opt.failure.criterion = an::Criterion::max_stress;
+  opt.failure.lamina = gfrp_lamina();
+  opt.failure.degradation = Degradation::mode_factors;
+  return opt;
+}
+
 struct DamageCount {
   std::size_t fibre = 0, matrix = 0, interface = 0;
 };
@@ -139,12 +150,7 @@ BOOST_AUTO_TEST_CASE(modes_thresholds_and_degradation) {
 BOOST_AUTO_TEST_CASE(mode_factor_degradation) {
   const Orthotropic m;
   const Discretisation d = rectangle(0.004, 0.002, 9, 5, 2.5, 0.2, 1);
-  ExplicitOptions opt;
-  opt.kinematics = Kinematics::small_strain;
-  opt.failure.enabled = true;
-  opt.failure.criterion = an::Criterion::max_stress;
-  opt.failure.lamina = gfrp_lamina();
-  opt.failure.degradation = Degradation::mode_factors;
+  const ExplicitOptions opt = max_stress_mode_factors();
   const Eigen::Matrix3d Q = m.Q();
   auto scaled = [&](double kE1, double kE2, double kG, double knu) {
     Orthotropic o = m;
@@ -217,12 +223,7 @@ BOOST_AUTO_TEST_CASE(damage_index_and_proportional_growth) {
   const Eigen::Vector3d eps(e, r * e, 0.0);
   for (DamageGrowth growth : {DamageGrowth::at_failure, DamageGrowth::proportional}) {
     const bool prop = growth == DamageGrowth::proportional;
-    ExplicitOptions opt;
-    opt.kinematics = Kinematics::small_strain;
-    opt.failure.enabled = true;
-    opt.failure.criterion = an::Criterion::max_stress;
-    opt.failure.lamina = gfrp_lamina();
-    opt.failure.degradation = Degradation::mode_factors;
+    ExplicitOptions opt = max_stress_mode_factors();
     opt.failure.growth = growth;
     ExplicitEFG s(d, m, 0.0, opt);
     s.set_displacement(homogeneous(d, e, r * e, 0.0));

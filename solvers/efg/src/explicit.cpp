@@ -140,7 +140,7 @@ void ExplicitEFG::first_piola(GP& q, Mat2& P, bool small, bool failure) {
     P = Finc * (q.Fr * S * q.Fr.transpose()) / q.Fr.determinant();
   }
   if (opt_.erosion != Erosion::none) {
-    const bool f = q.damage[fibre_damage] > 0.0, m = q.damage[matrix_damage] > 0.0;
+    const bool f = q.index[fibre_damage] >= 1.0, m = q.index[matrix_damage] >= 1.0;
     if (opt_.erosion == Erosion::fibre_and_matrix ? (f && m) : (f || m)) {
       q.eroded = true;
       q.S.setZero();
@@ -188,7 +188,7 @@ bool ExplicitEFG::update_damage(GP& q) const {
   const bool proportional = fo.growth == DamageGrowth::proportional;
   const bool zone = fo.S_sigma > 0.0 && fo.S_tau > 0.0 && q.cutting_zone;  // Table 1 strengths here
   const bool has_interface = fo.criterion == analytic::Criterion::max_stress || zone;
-  if (q.damage[0] + q.damage[1] >= 2.0 && (!has_interface || q.damage[2] >= 1.0)) return false;
+  if (q.index[0] >= 1.0 && q.index[1] >= 1.0 && (!has_interface || q.index[2] >= 1.0)) return false;
   const Eigen::Vector3d s12 = T_ * q.S;  // Eq 52
   // Screen (at_failure): with every material-frame component below 0.2 x the smallest strength,
   // no index of the three criteria can reach 1 (each is at most quadratic in stress/strength with
@@ -207,7 +207,7 @@ bool ExplicitEFG::update_damage(GP& q) const {
     // matrix intact (at_failure) or below its stored index (proportional), and the bound not
     // excluding it (with sigma11 < -Y_C LaRC02 uses misalignment-frame stresses: search).
     const double floor = proportional ? q.index[matrix_damage] : 1.0;
-    const bool search = q.damage[matrix_damage] < 1.0 &&
+    const bool search = q.index[matrix_damage] < 1.0 &&
                         (ps.s11 < -fo.lamina.Y_C || larc02_matrix_compression_bound(ps.s22, ps.t12, fo.lamina) >= floor);
     fi = analytic::larc02_failure(ps, fo.lamina, search);
   } else {
@@ -234,14 +234,11 @@ bool ExplicitEFG::update_damage(GP& q) const {
       if (k == fibre_damage) q.compressive[0] = ps.s11 < 0.0;
       if (k == matrix_damage) q.compressive[1] = ps.s22 < 0.0;
     }
-    if (d >= 1.0) {
-      q.damage[k] = 1.0;
-      failed = true;
-    }
+    failed = failed || d >= 1.0;
   }
   const bool changed = proportional ? grown : failed;
   if (changed) {
-    q.Qd = degraded_stiffness(proportional ? q.index : q.damage, q.compressive);
+    q.Qd = degraded_stiffness(proportional ? q.index : failed_modes(q), q.compressive);
     q.degraded = true;
   }
   return changed;
@@ -285,8 +282,7 @@ Eigen::Matrix3d ExplicitEFG::degraded_stiffness(const std::array<double, 3>& dam
 
 void ExplicitEFG::set_damage(std::size_t g, const std::array<double, 3>& damage,
                              const std::array<char, 2>& compressive) {
-  gp_.at(g).damage = damage;
-  gp_[g].index = damage;
+  gp_.at(g).index = damage;
   gp_[g].compressive = compressive;
   gp_[g].Qd = degraded_stiffness(damage, compressive);
   gp_[g].degraded = damage[0] + damage[1] + damage[2] > 0.0;
@@ -461,7 +457,7 @@ bool ExplicitEFG::erode_collapsed() {
   build_node_gp();
   auto failed = [&](int g) {
     const GP& q = gp_[g];
-    return q.eroded || q.damage[0] + q.damage[1] + q.damage[2] > 0.0;
+    return q.eroded || q.index[0] >= 1.0 || q.index[1] >= 1.0 || q.index[2] >= 1.0;
   };
   bool any = false;
   for (const auto& pr : pairs_) {
@@ -548,13 +544,12 @@ struct GPState {
   Eigen::Matrix3d Qd;
   Vec2 xr;
   double Vr;
-  double damage[3];
   double index[3];
   char compressive[2];
   char eroded;
   char degraded;
 };
-constexpr std::uint64_t kStateVersion = 2;
+constexpr std::uint64_t kStateVersion = 3;
 }  // namespace
 
 void ExplicitEFG::save_state(BinaryWriter& w) const {
@@ -578,7 +573,6 @@ void ExplicitEFG::save_state(BinaryWriter& w) const {
                 q.Qd,
                 q.xr,
                 q.Vr,
-                {q.damage[0], q.damage[1], q.damage[2]},
                 {q.index[0], q.index[1], q.index[2]},
                 {q.compressive[0], q.compressive[1]},
                 static_cast<char>(q.eroded),
@@ -619,7 +613,6 @@ void ExplicitEFG::load_state(BinaryReader& r) {
     q.Qd = o.Qd;
     q.xr = o.xr;
     q.Vr = o.Vr;
-    q.damage = {o.damage[0], o.damage[1], o.damage[2]};
     q.index = {o.index[0], o.index[1], o.index[2]};
     q.compressive = {o.compressive[0], o.compressive[1]};
     q.eroded = o.eroded != 0;

@@ -193,13 +193,14 @@ public:
   Eigen::Vector3d green_lagrange(std::size_t g) const { return gp_[g].E; }
   Mat2 deformation_gradient(std::size_t g) const { return gp_[g].F; }
   Vec2 gauss_position(std::size_t g) const;
-  std::array<double, 3> damage(std::size_t g) const { return gp_[g].damage; }
+  // Failed flags of Gauss point g (fibre, matrix, interface): 1 where the failure index reached 1.
+  std::array<double, 3> damage(std::size_t g) const { return failed_modes(gp_[g]); }
   // The failure indices of Gauss point g (fibre, matrix, interface): running maximum, capped at 1
   // (the paper's damage matrix D). With at_failure growth, indices of stress states screened out
   // as far below every strength (each material-frame component under 0.2 x the smallest
   // strength, index below about 0.04-0.16) are not evaluated and leave the stored value as it was.
   std::array<double, 3> failure_index(std::size_t g) const { return gp_[g].index; }
-  // Imposes damage flags on Gauss point g (pre-failed material, tests); the stiffness is degraded
+  // Imposes failure indices on Gauss point g (1: failed; pre-failed material, tests); the stiffness is degraded
   // as for failure in the run, and erosion applies at the next force evaluation. `compressive`:
   // fibre / matrix failed in compression (mode_factors scheme).
   void set_damage(std::size_t g, const std::array<double, 3>& damage,
@@ -232,14 +233,17 @@ private:
     Mat2 F = Mat2::Identity();       // current total F
     Eigen::Vector3d E = Eigen::Vector3d::Zero(), S = Eigen::Vector3d::Zero();
     ShapeData sd;                    // shape functions on the reference configuration
-    std::array<double, 3> damage = {0.0, 0.0, 0.0};  // failed flags (0 / 1): fibre, matrix, interface
-    std::array<double, 3> index = {0.0, 0.0, 0.0};   // failure indices, running max capped at 1
+    std::array<double, 3> index = {0.0, 0.0, 0.0};   // failure indices (fibre, matrix, interface), running max capped at 1
     std::array<char, 2> compressive = {0, 0};         // fibre, matrix failed in compression
     Eigen::Matrix3d Qd = Eigen::Matrix3d::Zero();    // degraded x-y stiffness (when `degraded`)
     bool degraded = false;                           // Qd, not the undamaged Qbar, applies
     bool cutting_zone = true;                        // the interface strengths apply here
     bool eroded = false;                             // separated: carries no stress
   };
+  // 1 for each mode whose failure index reached 1, else 0
+  static std::array<double, 3> failed_modes(const GP& q) {
+    return {q.index[0] >= 1.0 ? 1.0 : 0.0, q.index[1] >= 1.0 ? 1.0 : 0.0, q.index[2] >= 1.0 ? 1.0 : 0.0};
+  }
   void update_release();
   bool erode_collapsed();           // collapse erosion; true when something was eroded
   double min_active_distance() const;  // smallest distance between active nodes (Eq 56)

@@ -254,6 +254,62 @@ BOOST_AUTO_TEST_CASE(turned_free_chip_mass_balance) {
   BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
 }
 
+BOOST_AUTO_TEST_CASE(workpiece_block_frictionless_converges_to_merchant) {
+  // The paper's domain: the workpiece below the cutting line is meshed and the tool tip is a rake
+  // contact node. Frictionless, alpha = 0, phi = 45 deg, l = t1: the single-shear-plane mechanism
+  // (the block moving rigidly, touching the chip at the tip only) gives Merchant's F_c bar = 2
+  // exactly, so the discrete collapse power must approach 2 from above as the mesh is refined at
+  // the tip (measured: 2.622 on the uniform n = 4 mesh, 2.022 after 12 Doerfler steps, 1604
+  // elements; uniform n = 16: 2.153), and all the inflow of the layer must come out of the chip.
+  CuttingSetup c;
+  c.streamline = 0;
+  c.phi = M_PI / 4;
+  c.contact_length = 1.0;
+  c.depth = 2.0;
+  c.n = 4;
+  std::vector<CuttingAdaptStep> hist;
+  AdaptOptions opt;
+  opt.steps = 12;
+  opt.fraction = 0.5;
+  const auto r = adapt_cutting(c, opt, &hist);
+  for (const auto& h : hist) BOOST_TEST_MESSAGE("elements " << h.elements << " Fc_bar " << h.fc_bar);
+  for (const auto& h : hist) BOOST_TEST(h.fc_bar > 2.0 * (1.0 - 1e-3));
+  BOOST_TEST(hist.back().fc_bar < hist.front().fc_bar - 0.4);
+  BOOST_TEST(r.fc_bar < 2.0 * 1.02);
+  const double total = r.flux_top + r.flux_back + r.flux_end + r.flux_rake_free + r.flux_under;
+  BOOST_TEST(std::abs(total - 1.0) < 1e-6);  // incompressibility with the block's inflow and outflow
+  BOOST_TEST(std::abs(r.flux_under) < 0.01);
+  BOOST_TEST(r.flux_end > 0.98);
+  // the tip is an ordinary rake contact node (s = 0), not a fixed node
+  BOOST_TEST(r.s.front() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(workpiece_block_depth_does_not_matter) {
+  // Table 2 conditions (alpha = 6 deg, mu = 0.4809, phi = 30.4 deg, l = 1.899 t1, n = 6): the
+  // block stays rigid below the first cell rows, so depth and exit length do not change the
+  // solution (measured: F_c bar 3.34471 for depth 0.5-8 and exit length 1-4)
+  CuttingSetup c;
+  c.alpha = 6.0 * M_PI / 180;
+  c.mu = 0.4809;
+  c.phi = 30.4 * M_PI / 180;
+  c.contact_length = 1.899;
+  c.n = 6;
+  c.depth = 1.0;
+  const auto a = solve_cutting(c);
+  c.depth = 4.0;
+  c.exit_length = 4.0;
+  const auto b = solve_cutting(c);
+  BOOST_TEST_MESSAGE("depth 1: " << a.fc_bar << " depth 4: " << b.fc_bar << " layer model (depth 0) differs");
+  BOOST_TEST(std::abs(a.fc_bar - b.fc_bar) < 1e-4 * a.fc_bar);
+  BOOST_TEST(std::abs(a.ff_bar - b.ff_bar) < 1e-3 * std::abs(a.ff_bar));
+  CuttingSetup bad = c;
+  bad.depth = 0.1;
+  BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
+  bad.depth = 2.0;
+  bad.exit_length = 0.2;
+  BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
+}
+
 // The loop's control flow with a stub solve (no mechanics): eta2 = phi - phi0, so phi* = phi0 to
 // within tol_phi below it; no sign change above phi_min gives the smallest angle tried, not
 // converged; a phi_min above phi_M - step keeps the phi_M solve as the result.

@@ -20,12 +20,86 @@ double merchant_force_bar(double phi, double alpha, double mu) {
 }
 
 
+namespace {
+
+// The workpiece block below the cutting line (depth > 0): its top edge carries the work region's
+// x-grid on [−Lw, 0] (conforming along the cutting line) and a uniform grid of about n/2 cells per
+// t1 up to the exit; in y the cells are 1/n next to the cutting line and grow by 1.15 downward
+// (the last one takes the remainder), so that the mesh at the cutting line does not change with
+// the depth.
+Mesh workpiece_block(const CuttingSetup& c, double Lw, const std::vector<double>& xw) {
+  const double t1 = c.t1, D = c.depth * t1, X = c.exit_length * t1;
+  std::vector<double> xs;
+  for (double u : xw) xs.push_back(-Lw + u * Lw);
+  const int nr = std::max(2, static_cast<int>(std::ceil(c.n * c.exit_length * 0.5)));
+  for (int i = 1; i <= nr; ++i) xs.push_back(X * i / nr);
+  std::vector<double> xi;
+  for (double x : xs) xi.push_back((x + Lw) / (Lw + X));
+  std::vector<double> depths{0.0};  // below the cutting line
+  for (double h = t1 / c.n; depths.back() < D;) {
+    const double next = depths.back() + h;
+    if (next > D - 0.5 * h) {
+      depths.push_back(D);
+      break;
+    }
+    depths.push_back(next);
+    h *= 1.15;
+  }
+  std::vector<double> eta;  // from the bottom (η = 0 at y = −D) to the cutting line
+  for (auto it = depths.rbegin(); it != depths.rend(); ++it) eta.push_back(1.0 - *it / D);
+  eta.front() = 0.0;
+  eta.back() = 1.0;
+  return structured_quad({-Lw, -D}, {X, -D}, {X, 0.0}, {-Lw, 0.0}, xi, eta, Pattern::union_jack);
+}
+
+// (σ_n, τ) per contact (order of model.contacts) from the element stress field, see CuttingResult.
+std::vector<Vector2d> contact_traction_field(const LimitModel& m, const LimitSolution& sol) {
+  std::map<int, int> contact_of;
+  for (std::size_t i = 0; i < m.contacts.size(); ++i) contact_of[m.contacts[i].node] = static_cast<int>(i);
+  std::vector<Vector2d> sum(m.contacts.size(), Vector2d::Zero());
+  std::vector<int> count(m.contacts.size(), 0);
+  for (const auto& e : boundary_edges(m.mesh)) {
+    const auto mid = contact_of.find(e.m);
+    if (mid == contact_of.end()) continue;
+    const auto& cn = m.contacts[static_cast<std::size_t>(mid->second)];
+    const Vector2d n = cn.normal, t(-n.y(), n.x());
+    const auto& el = m.mesh.elements[static_cast<std::size_t>(e.element)];
+    Vector2d end[2];
+    for (int k = 0; k < 2; ++k) {
+      const int node = k == 0 ? e.a : e.b;
+      const int local = static_cast<int>(std::find(el.begin(), el.begin() + 3, node) - el.begin());
+      const auto row = sol.stress.row(3 * e.element + local);
+      const Vector2d T(row(0) * n.x() + row(2) * n.y(), row(2) * n.x() + row(1) * n.y());
+      end[k] = Vector2d(n.dot(T), t.dot(T));
+      const auto it = contact_of.find(node);
+      if (it == contact_of.end()) continue;
+      sum[static_cast<std::size_t>(it->second)] += end[k];
+      ++count[static_cast<std::size_t>(it->second)];
+    }
+    sum[static_cast<std::size_t>(mid->second)] += 0.5 * (end[0] + end[1]);
+    ++count[static_cast<std::size_t>(mid->second)];
+  }
+  for (std::size_t i = 0; i < sum.size(); ++i)
+    if (count[i] > 0) sum[i] /= count[i];
+  return sum;
+}
+
+Mesh with_block(Mesh m, const CuttingSetup& c, double Lw, const std::vector<double>& xw) {
+  if (c.depth <= 0.0) return m;
+  return merge(m, workpiece_block(c, Lw, xw), 1e-9 * c.t1);
+}
+
+}  // namespace
+
 LimitModel cutting_model(const CuttingSetup& c) {
   if (!(c.t1 > 0.0)) throw InputError("t1", "must be positive");
   if (!(c.phi > 0.0 && c.phi < 0.5 * M_PI)) throw InputError("phi", "shear angle must be in (0, 90) deg");
   if (!(std::abs(c.alpha) < 0.5 * M_PI - c.phi + 0.5 * M_PI)) throw InputError(glossary::kRakeAngle, "rake angle out of range");
   if (!(c.contact_length > 0.0)) throw InputError("contact_length", "must be positive");
   if (c.n < 2) throw InputError("n", "need at least 2 cells across t1");
+  if (!(c.depth == 0.0 || (c.depth >= 0.25 && c.depth <= 20.0)))
+    throw InputError("depth", "workpiece depth below the cutting line must be 0 (layer only) or in [0.25, 20] t1");
+  if (!(c.exit_length >= 0.5 && c.exit_length <= 20.0)) throw InputError("exit_length", "must be in [0.5, 20] t1");
   const double t1 = c.t1, t2 = chip_thickness(t1, c.phi, c.alpha);
   const Vector2d O(0.0, 0.0), r(std::sin(c.alpha), std::cos(c.alpha));
   const Vector2d S(-t1 / std::tan(c.phi), t1);
@@ -43,7 +117,7 @@ LimitModel cutting_model(const CuttingSetup& c) {
   const Mesh work = structured_quad({-Lw, 0.0}, O, S, {-Lw, t1}, xw, eta, Pattern::union_jack);
   if (c.eta2 == 0.0) {
     const Mesh chip = structured_quad(O, O + Lc * r, S + Lc * r, S, xc, eta, Pattern::union_jack);
-    return cutting_model_on_mesh(merge(work, chip, 1e-9 * t1), c);
+    return cutting_model_on_mesh(with_block(merge(work, chip, 1e-9 * t1), c, Lw, xw), c);
   }
   if (!(std::abs(c.eta2) < 0.25 * M_PI)) throw InputError("eta2", "stream angle must be in (-45, 45) deg");
   // contact part O, C = l r, D = S + l r, S; free part turned by η2 about the line C–D
@@ -53,7 +127,7 @@ LimitModel cutting_model(const CuttingSetup& c) {
   const Vector2d C = l * r, D = S + l * r;
   const Mesh chip1 = structured_quad(O, C, D, S, uniform_grid(nc1), eta, Pattern::union_jack);
   const Mesh chip2 = structured_quad(C, C + Lf * r2, D + Lf * r2, D, graded_grid(nc2, 1.1, 0.0), eta, Pattern::union_jack);
-  return cutting_model_on_mesh(merge(merge(work, chip1, 1e-9 * t1), chip2, 1e-9 * t1), c);
+  return cutting_model_on_mesh(with_block(merge(merge(work, chip1, 1e-9 * t1), chip2, 1e-9 * t1), c, Lw, xw), c);
 }
 
 LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
@@ -72,9 +146,10 @@ LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
   for (const auto& e : boundary_edges(m.mesh))
     for (int nd : {e.a, e.m, e.b}) on_boundary[static_cast<std::size_t>(nd)] = 1;
   const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));  // rake-face normal, out of the chip
+  const bool block = c.depth > 0.0;
   for (int i = 0; i < m.mesh.num_nodes(); ++i) {
     const Vector2d& x = m.mesh.nodes[static_cast<std::size_t>(i)];
-    if (x.norm() < tol) {  // tool tip: stagnation
+    if (x.norm() < tol && !block) {  // tool tip: stagnation
       m.fix(i, 0);
       m.fix(i, 1);
       continue;
@@ -84,12 +159,16 @@ LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
       m.fix(i, 1, 0.0);
       continue;
     }
-    if (std::abs(x.y()) < tol && x.x() < 0.0) {  // cutting line: smooth
+    if (!block && std::abs(x.y()) < tol && x.x() < 0.0) {  // cutting line: smooth
+      m.fix(i, 1);
+      continue;
+    }
+    if (block && std::abs(x.y() + c.depth * t1) < tol) {  // bottom of the workpiece: horizontal movement
       m.fix(i, 1);
       continue;
     }
     const double along = x.dot(r), off = x.dot(nr);
-    if (std::abs(off) < tol && along > 0.0 && along <= c.contact_length + tol) {
+    if (std::abs(off) < tol && (along > 0.0 || (block && along > -tol)) && along <= c.contact_length + tol) {
       contact.push_back(i);
       continue;
     }
@@ -137,7 +216,7 @@ void contact_statistics(CuttingResult& res, double l_max) {
 void truncate_contact(CuttingResult& res, double l_max) {
   std::size_t keep = 0;
   while (keep < res.s.size() && res.s[keep] <= l_max * (1.0 + 1e-12)) ++keep;
-  for (auto* v : {&res.s, &res.sigma_n, &res.tau, &res.slip, &res.trib}) v->resize(keep);
+  for (auto* v : {&res.s, &res.sigma_n, &res.tau, &res.slip, &res.trib, &res.sigma_n_field, &res.tau_field}) v->resize(keep);
   contact_statistics(res, l_max);
 }
 
@@ -175,12 +254,15 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
   // lumped contact stresses: nodal reaction / tributary length (1/6, 4/6, 1/6 weights of T6 edges)
   std::map<int, double> trib;
   for (const auto& e : boundary_edges(res.model.mesh)) {
+    const Vector2d& xm = res.model.mesh.nodes[static_cast<std::size_t>(e.m)];
+    if (c.depth > 0.0 && std::abs(xm.y()) < 1e-8 * c.t1 && xm.x() > 0.0) continue;  // machined surface: not the rake's
     const double L = (res.model.mesh.nodes[static_cast<std::size_t>(e.b)] - res.model.mesh.nodes[static_cast<std::size_t>(e.a)]).norm();
     trib[e.a] += L / 6.0;
     trib[e.b] += L / 6.0;
     trib[e.m] += 4.0 * L / 6.0;
   }
   std::sort(order.begin(), order.end());
+  const auto field = contact_traction_field(res.model, sol);
   for (const auto& [s, i] : order) {
     const auto& cn = res.model.contacts[static_cast<std::size_t>(i)];
     const double tl = trib[cn.node];
@@ -189,6 +271,8 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     res.tau.push_back(sol.contact_rt[i] / tl);
     res.slip.push_back(sol.contact_wt[i]);
     res.trib.push_back(tl);
+    res.sigma_n_field.push_back(field[static_cast<std::size_t>(i)].x());
+    res.tau_field.push_back(field[static_cast<std::size_t>(i)].y());
   }
   res.v_chip = std::sin(c.phi) / std::cos(c.phi - c.alpha);
   res.stick_tol = c.stick_tol;
@@ -210,7 +294,9 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
       const double L = (mesh.nodes[static_cast<std::size_t>(e.b)] - mesh.nodes[static_cast<std::size_t>(e.a)]).norm();
       auto vn = [&](int nd) { return sol.velocity[2 * nd] * n.x() + sol.velocity[2 * nd + 1] * n.y(); };
       const double f = L * (vn(e.a) + 4.0 * vn(e.m) + vn(e.b)) / 6.0;
-      if (std::abs(xm.y() - c.t1) < tol && xm.x() < S.x()) res.flux_top += f;
+      if (c.depth > 0.0 && ((std::abs(xm.y()) < tol && xm.x() > 0.0) || (std::abs(xm.x() - c.exit_length * c.t1) < tol && xm.y() < 0.0)))
+        res.flux_under += f;  // machined surface and the block's exit
+      else if (std::abs(xm.y() - c.t1) < tol && xm.x() < S.x()) res.flux_top += f;
       else if (std::abs(xm.dot(nr) - S.dot(nr)) < tol && (c.eta2 == 0.0 || (xm - D).dot(r) < 0.0)) res.flux_back += f;
       else if (c.eta2 != 0.0 && std::abs((xm - D).dot(nr2)) < tol && (xm - D).dot(r2) > 0.0) res.flux_back += f;
       else if (c.eta2 != 0.0 && std::abs((xm - C).dot(nr2)) < tol && (xm - C).dot(r2) > 0.0) res.flux_rake_free += f;
@@ -221,6 +307,7 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
       }
       else if (std::abs(xm.dot(nr)) < tol && xm.dot(r) > 0.0) res.flux_rake_free += f;  // separation or free part
     }
+    res.flux_under -= c.depth * c.t1;  // the block's own inflow
     res.chip_exit_angle = std::atan2(-v_end.dot(nr2), v_end.dot(r2));  // relative to the (turned) chip
     double rn = 0.0;
     for (Eigen::Index i = 0; i < sol.slider_rn.size(); ++i) rn += std::abs(sol.slider_rn[i]);

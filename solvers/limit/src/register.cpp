@@ -360,6 +360,10 @@ const DeclaredParams<CuttingRun>& cutting_declaration() {
              [](S& s, double v) { s.geometry.eta2 = v; })
         .add(param("chip_extra", Dim::dimensionless, "length of the chip mesh beyond the contact, in t2", 2.0, 0.5, 10.0),
              [](S& s, double v) { s.geometry.chip_extra = v; })
+        .add(param("depth", Dim::dimensionless, "workpiece depth below the cutting line, in t1: 0 = the uncut layer only (smooth cutting line, tool tip fixed); 0.25-20 = the block below it is meshed, its bottom slides horizontally, the tool tip is a rake contact node and material may pass under the tool", 0.0, 0.0, 20.0),
+             [](S& s, double v) { s.geometry.depth = v; })
+        .add(param("exit_length", Dim::dimensionless, "machined surface meshed beyond the tool tip, in t1 (depth > 0)", 2.0, 0.5, 20.0),
+             [](S& s, double v) { s.geometry.exit_length = v; })
         .add(switch_param("fit_eta2", "fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", false),
              [](S& s, double v) { s.modes.fit_eta = v != 0.0; })
         .add(p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%) from the structured mesh; at a fixed geometry, or at every phi of the steady_state = 2 loop (with contact_search: l(phi) from the uniform mesh, then the refined permanent contact over l)", 0, 0, 10),
@@ -388,6 +392,8 @@ CuttingRun cutting_run_from(const Values& given_in) {
   const double len = std::isnan(c.contact_length) ? r.t1 / std::cos(c.alpha) : c.contact_length;
   if (!(len > 0.0)) throw InputError("contact_length", "must be positive");
   c.contact_length = len / r.t1;
+  if (c.depth > 0.0 && c.depth < 0.25)
+    throw InputError("depth", "must be 0 (the uncut layer only) or in [0.25, 20] t1 (the workpiece below the cutting line)");
   const CuttingModes& m = r.modes;
   if (m.fit_eta && (m.search() || m.loop() || m.tangent()))
     throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = \"fixed\", steady_state = \"off\")");
@@ -654,6 +660,7 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
   put("flux_back", r.flux_back, "1");
   put("flux_end", r.flux_end, "1");
   put("flux_rake_free", r.flux_rake_free, "1");
+  put("flux_under", r.flux_under, "1");
   put("streamline_force", r.streamline_force, "1");
   put("eta2", r.chip_exit_angle, "rad");
   put("eta2_geometry", c.eta2, "rad");
@@ -701,6 +708,8 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
   contact.add("s_over_l", "1", s_over_l);
   contact.add("sigma_n_over_k", "1", r.sigma_n);
   contact.add("tau_over_k", "1", r.tau);
+  contact.add("sigma_n_field_over_k", "1", r.sigma_n_field);
+  contact.add("tau_field_over_k", "1", r.tau_field);
   contact.add("slip_velocity", "1", r.slip);
   contact.add("stick", "1", std::vector<double>(r.stick.begin(), r.stick.end()));
   out.tables.push_back(std::move(contact));
@@ -714,6 +723,9 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
                                          : std::string("structured mesh, no adaptive refinement")));
   static const char* kStreamline[] = {"none", "top", "top_back", "top_back_beyond"};
   out.notes.push_back(std::string("free surfaces held as streamlines: ") + kStreamline[std::clamp(c.streamline, 0, 3)]);
+  out.notes.push_back(c.depth > 0.0 ? "domain: the workpiece to " + std::to_string(c.depth) +
+                                          " t1 below the cutting line, tool tip a rake contact node (material may pass under the tool)"
+                                    : std::string("domain: the uncut layer only, smooth cutting line, tool tip fixed"));
   out.notes.push_back("contact stresses are lumped nodal reactions over tributary lengths (T6 weights 1/6, 4/6, 1/6)");
   return out;
 }
@@ -731,6 +743,8 @@ SolverSpec cutting_spec() {
                {{"s_over_l", "1", "distance from the tool tip / contact length"},
                 {"sigma_n_over_k", "1", "normal contact stress / k"},
                 {"tau_over_k", "1", "tangential contact stress / k"},
+                {"sigma_n_field_over_k", "1", "normal contact stress / k from the element stress field (sigma n of the contact edges' elements)"},
+                {"tau_field_over_k", "1", "tangential contact stress / k from the element stress field"},
                 {"slip_velocity", "1", "slip velocity / tool speed"},
                 {"stick", "1", "1 where the node sticks"}}},
               {"rake_layer",
@@ -765,6 +779,7 @@ SolverSpec cutting_spec() {
                {"flux_back", Dim::dimensionless, "volume flux out of the chip back / (v t1)"},
                {"flux_end", Dim::dimensionless, "volume flux out of the chip end / (v t1)"},
                {"flux_rake_free", Dim::dimensionless, "volume flux out of the rake-face line / (v t1): free part beyond l (> 0: into the tool, < 0: lifting off) and separating contact nodes (< 0)"},
+               {"flux_under", Dim::dimensionless, "volume flux of the uncut layer leaving under the tool / (v t1) (depth > 0: flux through the machined surface and the block exit minus the block's inflow)"},
                {"streamline_force", Dim::dimensionless, "sum |normal reaction| on the streamline surfaces / (k t1 w)"},
                {"eta2", Dim::angle, "direction of the chip end velocity relative to the chip beyond the contact (mean velocity over the chip end; > 0 away from the tool)"},
                {"eta2_geometry", Dim::angle, "stream angle eta2 of the chip geometry beyond the contact (given or fitted)"},

@@ -51,6 +51,14 @@ struct CuttingSetup {
   // chip (Eq. 2). The chip back beyond l is then not a streamline surface (streamline ≥ 2 holds
   // the straight part only).
   double eta2 = 0.0;
+  // Workpiece below the cutting line, depth in t1. 0: only the uncut layer is meshed, the cutting
+  // line y = 0 is a smooth rigid plane and the tool tip is fixed (stagnation imposed at the tip).
+  // > 0: the block −depth·t1 ≤ y ≤ 0 enters with the layer at v = (1, 0), its bottom moves
+  // horizontally (v_y = 0), the cutting line is interior, the tool tip is a contact node of the
+  // rake face (material may pass under the tool), and the machined surface y = 0 beyond the tip
+  // and the block's exit x = exit_length·t1 are free.
+  double depth = 0.0;
+  double exit_length = 2.0;  // machined surface beyond the tip, in t1 (depth > 0)
 };
 
 struct CuttingResult {
@@ -64,6 +72,10 @@ struct CuttingResult {
   double ff_bar = 0.0;
   // rake-face profile, ordered by s (distance from the tip), lumped nodal values
   std::vector<double> s, sigma_n, tau, slip;
+  // the same profile from the element stress field: traction σ·n of the linear stress of the
+  // element on each contact edge at its two vertices; a vertex node takes the mean over its
+  // contact edges, a mid-side node the mean of its edge's ends
+  std::vector<double> sigma_n_field, tau_field;
   double stick_fraction = 0.0;  // fraction of the contact length in stick (|w_t| < stick_tol·v_chip)
   // apparent friction Σ|r_t| / Σ|r_n| over the stick nodes, the slip nodes, and |F_t|/|F_n| of
   // the resultants over the whole contact (NaN where a zone is empty)
@@ -78,6 +90,9 @@ struct CuttingResult {
   // beyond l (> 0: the chip would cross the rake face, < 0: it lifts off / curls away)
   // and, with the unilateral contact, the separating nodes (v·n = −z < 0: the chip lifts off)
   double flux_rake_free = 0.0;
+  // depth > 0: material of the uncut layer that leaves under the tool (flux through the machined
+  // surface and the block's exit, minus the block's own inflow depth·1)
+  double flux_under = 0.0;
   // resultant normal force on the streamline (slider) surfaces, |Σ r_n| / (k t1): how far the
   // imposed geometry is from a traction-free steady state (0 when streamline = 0); Σ|r_n|/(k t1)
   double streamline_force = 0.0;

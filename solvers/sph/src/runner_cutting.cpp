@@ -41,6 +41,10 @@ CuttingInputs cutting_inputs(const CuttingSetup& c) {
   in.contact.tool_heat_share = c.tool_heat_share;
   in.contact.shear_cap = c.shear_cap;
   in.contact.alpha = c.contact_stiffness;
+  in.options.alpha_visc = c.alpha_visc;
+  in.options.beta_visc = c.beta_visc;
+  in.options.artificial_stress = c.artificial_stress;
+  in.options.xsph = c.xsph;
   in.tool_heat = HeatMaterial{c.tool_conductivity, c.tool_density, c.tool_specific_heat};
   return in;
 }
@@ -341,11 +345,16 @@ public:
   std::size_t steps() const override { return static_cast<std::size_t>(s_.steps()); }
 
   void advance() override {
-    const double dt = std::min(s_.stable_time_step(), t_end_ - s_.time());
-    if (!(dt > 0.0)) {
+    // No step shorter than half the stable one: the penalty stiffness alpha m / dt^2 of a sliver
+    // step at the end of the cut would kick the contact particles (measured: the contact springs
+    // held 4.4 J/m after a final sliver step, 0.12 J/m before it). The cut ends within half a step.
+    const double dt_stable = s_.stable_time_step(), left = t_end_ - s_.time();
+    if (!(left > 0.5 * dt_stable)) {
       stopped_ = true;
+      if (acc_t_ > 0.0) record_window();
       return;
     }
+    const double dt = std::min(dt_stable, left);
     s_.step(dt);
     const double fc = s_.tool_force().x(), ft = s_.tool_force().y();  // force on the tool
     // tool moves in -x: the cutting force resists it (+x on the tool); thrust pushes it up (+y)
@@ -452,6 +461,18 @@ private:
     r_.ft.push_back(acc_ft_ / acc_t_);
     acc_fc_ = acc_ft_ = acc_t_ = 0.0;
     t_next_ += window_;
+    const SolidSph::EnergyLedger& e = s_.energy();
+    r_.e_tool.push_back(e.tool_work);
+    r_.e_kinetic.push_back(s_.kinetic_energy());
+    r_.e_elastic.push_back(s_.strain_energy());
+    r_.e_plastic.push_back(e.plastic);
+    r_.e_friction.push_back(e.friction);
+    r_.e_viscous.push_back(e.viscous);
+    r_.e_art.push_back(e.artificial_stress);
+    r_.e_spring.push_back(s_.contact_spring_energy());
+    r_.e_stress.push_back(e.stress_work);
+    r_.e_internal.push_back(e.internal_work);
+    r_.e_xsph.push_back(e.xsph_contact);
     if (s_.time() >= t_steady_) {  // time average of the rake-face sample over the steady part
       const double tr = rake_face_temperature();
       if (std::isfinite(tr)) {
@@ -472,7 +493,10 @@ private:
                     &self.rake_avg_sum_, &self.zone_force_[0].x(), &self.zone_force_[0].y(), &self.zone_force_[1].x(),
                     &self.zone_force_[1].y(), &self.zone_force_[2].x(), &self.zone_force_[2].y()})
       f64(*d);
-    for (auto* v : {&self.r_.t, &self.r_.cut, &self.r_.fc, &self.r_.ft}) vec(*v);
+    for (auto* v : {&self.r_.t, &self.r_.cut, &self.r_.fc, &self.r_.ft, &self.r_.e_tool, &self.r_.e_kinetic, &self.r_.e_elastic,
+                    &self.r_.e_plastic, &self.r_.e_friction, &self.r_.e_viscous, &self.r_.e_art, &self.r_.e_spring,
+                    &self.r_.e_stress, &self.r_.e_internal, &self.r_.e_xsph})
+      vec(*v);
   }
 
   const CuttingSetup& c_;
@@ -535,6 +559,10 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
         .bind(param("steady_from", Dim::dimensionless, "fraction of the cut after which forces are averaged", def.steady_from, 0.0, 0.99), &S::steady_from)
         .bind(param("tool_heat_share", Dim::dimensionless, "share of the friction heat put into the tool; -1: effusivity partition sqrt(k rho c) (default)", def.tool_heat_share, -1.0, 1.0), &S::tool_heat_share)
         .bind(param("contact_stiffness", Dim::dimensionless, "penalty contact stiffness alpha (f_N = -alpha m g / dt^2; assumed, not in the paper)", def.contact_stiffness, 0.001, 1.0), &S::contact_stiffness)
+        .bind(param("alpha_visc", Dim::dimensionless, "Monaghan artificial viscosity alpha (assumed, not in the paper)", def.alpha_visc, 0.0, 10.0), &S::alpha_visc)
+        .bind(param("beta_visc", Dim::dimensionless, "Monaghan artificial viscosity beta (assumed, not in the paper)", def.beta_visc, 0.0, 10.0), &S::beta_visc)
+        .bind(param("artificial_stress", Dim::dimensionless, "Gray artificial stress epsilon, 0 = off (assumed, not in the paper)", def.artificial_stress, 0.0, 1.0), &S::artificial_stress)
+        .bind(param("xsph", Dim::dimensionless, "XSPH position smoothing epsilon, 0 = off (assumed, not in the paper)", def.xsph, 0.0, 1.0), &S::xsph)
         .bind(switch_param("shear_cap", "true: cap the friction stress at the chip's shear flow stress (Zorev); false: Coulomb only (paper)", false), &S::shear_cap);
     return p;
   }();
@@ -580,13 +608,32 @@ std::vector<OutputSpec> cutting_scalars() {
                {"chip_curl", Dim::angle, "turning angle of the chip centroid line, first to last third"},
                {"chip_segments", Dim::dimensionless, "peaks of the column-mean eps_p profile along the uncut layer after 2 t_u of cut (3-column mean, hysteresis 0.2 x mean)"},
                {"serration_pitch", Dim::length, "mean distance between eps_p peaks along the uncut layer (NaN below 2 peaks)"},
-               {"serration_cv", Dim::dimensionless, "std / mean of the smoothed column-mean eps_p profile after 2 t_u of cut"}};
+               {"serration_cv", Dim::dimensionless, "std / mean of the smoothed column-mean eps_p profile after 2 t_u of cut"},
+               {"tool_work", Dim::force_per_width, "work of the tool on the workpiece over the run, J per metre of depth"},
+               {"energy_residual", Dim::dimensionless, "first law at the end: (tool work - kinetic - elastic - plastic - friction - viscous + artificial-stress work - contact springs - contact work along the XSPH drift) / tool work"},
+               {"kinetic_fraction", Dim::dimensionless, "kinetic energy at the end / tool work"},
+               {"elastic_fraction", Dim::dimensionless, "stored elastic energy at the end / tool work"},
+               {"plastic_fraction", Dim::dimensionless, "plastic dissipation sum V sigma_y d(eps_p) / tool work"},
+               {"friction_fraction", Dim::dimensionless, "slip dissipation at the tool / tool work"},
+               {"viscous_fraction", Dim::dimensionless, "artificial-viscosity dissipation / tool work"},
+               {"artificial_stress_fraction", Dim::dimensionless, "work of the artificial-stress pair forces on the particles / tool work"},
+               {"xsph_contact_fraction", Dim::dimensionless, "work of the penalty contact forces along the XSPH part of the drift / tool work (< 0: energy the XSPH drift lets the contact give the particles)"},
+               {"conjugacy_error", Dim::dimensionless, "(work of the stress pair forces + constitutive power sum V sigma:D) / tool work: energy created (> 0) by the discrete divergence / gradient pair"},
+               {"constitutive_error", Dim::dimensionless, "(constitutive power - elastic - plastic) / tool work: the stress update's own energy error"}};
 }
 
 CuttingSetup cutting_setup_from(const Values& v) {
   CuttingSetup c = cutting_declaration().make(v);
   c.history_window = c.cut_distance / c.speed / 200.0;
   return c;
+}
+
+// First law at window k: tool work - (kinetic + elastic + plastic + friction + viscous - work of the
+// artificial stress + contact springs + contact work along the XSPH drift); the workpiece starts at
+// rest and unstressed.
+double energy_residual(const CuttingResult& r, std::size_t k) {
+  return r.e_tool[k] - (r.e_kinetic[k] + r.e_elastic[k] + r.e_plastic[k] + r.e_friction[k] + r.e_viscous[k] - r.e_art[k] +
+                        r.e_spring[k] + r.e_xsph[k]);
 }
 
 RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
@@ -608,6 +655,24 @@ RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
   chip.add("cx", "m", r.chip_cx);
   chip.add("cy", "m", r.chip_cy);
   out.tables.push_back(std::move(chip));
+  Table en;
+  en.name = "energy";
+  en.add("t", "s", r.t);
+  en.add("tool_work", "J/m", r.e_tool);
+  en.add("kinetic", "J/m", r.e_kinetic);
+  en.add("elastic", "J/m", r.e_elastic);
+  en.add("plastic", "J/m", r.e_plastic);
+  en.add("friction", "J/m", r.e_friction);
+  en.add("viscous", "J/m", r.e_viscous);
+  en.add("artificial_stress_work", "J/m", r.e_art);
+  en.add("contact_springs", "J/m", r.e_spring);
+  en.add("stress_work", "J/m", r.e_stress);
+  en.add("internal_work", "J/m", r.e_internal);
+  en.add("xsph_contact_work", "J/m", r.e_xsph);
+  std::vector<double> residual;
+  for (std::size_t k = 0; k < r.e_tool.size(); ++k) residual.push_back(energy_residual(r, k));
+  en.add("residual", "J/m", residual);
+  out.tables.push_back(std::move(en));
   out.snapshots = r.snapshots;
   if (!r.tool_snapshot.x.empty()) out.snapshots.push_back(r.tool_snapshot);
   const double generated = r.plastic_heat + r.friction_heat;
@@ -632,6 +697,7 @@ RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
                  {"F_c_edge", r.force_edge.x()}, {"F_t_edge", r.force_edge.y()},
                  {"F_c_flank", r.force_flank.x()}, {"F_t_flank", r.force_flank.y()},
                  {"rake_friction_ratio", r.rake_friction_ratio}, {"rake_slip_fraction", r.rake_slip_fraction}};
+
   out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"rake_temperature", "K"}, {"rake_temperature_avg", "K"}, {"T_max", "K"},
                       {"chip_height", "m"}, {"steps", "1"}, {"particles", "1"}, {"tool_rake_temperature", "K"}, {"tool_T_max", "K"},
                       {"heat_generated", "J/m"}, {"heat_imbalance", "1"}, {"friction_heat", "J/m"}, {"heat_lost_fraction", "1"},
@@ -641,6 +707,31 @@ RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
                       {"serration_pitch", "m"}, {"serration_cv", "1"},
                       {"F_c_rake", "N/m"}, {"F_t_rake", "N/m"}, {"F_c_edge", "N/m"}, {"F_t_edge", "N/m"},
                       {"F_c_flank", "N/m"}, {"F_t_flank", "N/m"}, {"rake_friction_ratio", "1"}, {"rake_slip_fraction", "1"}};
+  {  // first-law audit at the end of the run, as fractions of the tool's work
+    const std::size_t k = r.e_tool.size();
+    const double W = k > 0 ? r.e_tool[k - 1] : 0.0;
+    const auto frac = [W](double e) { return W > 0.0 ? e / W : nan_value(); };
+    const double nan = nan_value();
+    out.scalars["tool_work"] = k > 0 ? W : nan;
+    out.scalars["energy_residual"] = k > 0 ? frac(energy_residual(r, k - 1)) : nan;
+    out.scalars["kinetic_fraction"] = k > 0 ? frac(r.e_kinetic[k - 1]) : nan;
+    out.scalars["elastic_fraction"] = k > 0 ? frac(r.e_elastic[k - 1]) : nan;
+    out.scalars["plastic_fraction"] = k > 0 ? frac(r.e_plastic[k - 1]) : nan;
+    out.scalars["friction_fraction"] = k > 0 ? frac(r.e_friction[k - 1]) : nan;
+    out.scalars["viscous_fraction"] = k > 0 ? frac(r.e_viscous[k - 1]) : nan;
+    out.scalars["artificial_stress_fraction"] = k > 0 ? frac(r.e_art[k - 1]) : nan;
+    out.scalars["xsph_contact_fraction"] = k > 0 ? frac(r.e_xsph[k - 1]) : nan;
+    // the discrete stress divergence and velocity gradient are not conjugate: stress work on the
+    // particles + constitutive power = energy the pair of operators creates (> 0) or loses
+    out.scalars["conjugacy_error"] = k > 0 ? frac(r.e_stress[k - 1] + r.e_internal[k - 1]) : nan;
+    // constitutive power - (elastic + plastic): the stress update's own error (Jaumann rotation,
+    // radial return, the density update)
+    out.scalars["constitutive_error"] = k > 0 ? frac(r.e_internal[k - 1] - r.e_elastic[k - 1] - r.e_plastic[k - 1]) : nan;
+    for (const char* key : {"energy_residual", "kinetic_fraction", "elastic_fraction", "plastic_fraction", "friction_fraction",
+                            "viscous_fraction", "artificial_stress_fraction", "xsph_contact_fraction", "conjugacy_error", "constitutive_error"})
+      out.scalar_units[key] = "1";
+    out.scalar_units["tool_work"] = "J/m";
+  }
   out.notes.push_back("Snapshots: the workpiece states in time order, then (if the tool conducts) the "
                       "final tool particles with their temperature.");
   out.notes.push_back("Tool is rigid; its particles conduct heat (k 88 W/mK, c_p 292 J/kgK, density "
@@ -673,7 +764,22 @@ SolverSpec detail::cutting_spec() {
                 {"s", "m", "arc length along the chip's centroid line"},
                 {"eps_p", "1", "column-mean equivalent plastic strain"},
                 {"cx", "m", "x of the column centroid"},
-                {"cy", "m", "y of the column centroid"}}}};
+                {"cy", "m", "y of the column centroid"}}},
+              {"energy",
+               "first-law audit at the end of each force window (from the start of the run)",
+               {{"t", "s", "time"},
+                {"tool_work", "J/m", "work of the tool on the workpiece"},
+                {"kinetic", "J/m", "kinetic energy"},
+                {"elastic", "J/m", "stored elastic energy sum V (p^2/2K + S:S/4G)"},
+                {"plastic", "J/m", "plastic dissipation sum V sigma_y d(eps_p)"},
+                {"friction", "J/m", "slip dissipation at the tool"},
+                {"viscous", "J/m", "artificial-viscosity dissipation"},
+                {"artificial_stress_work", "J/m", "work of the artificial-stress pair forces on the particles"},
+                {"contact_springs", "J/m", "energy in the penalty contact springs"},
+                {"stress_work", "J/m", "work of the stress pair forces on the particles"},
+                {"internal_work", "J/m", "constitutive power sum V sigma:D, integrated"},
+                {"xsph_contact_work", "J/m", "work of the penalty contact forces along the XSPH part of the drift (< 0: energy the contact gives the particles without work of the tool)"},
+                {"residual", "J/m", "tool work - kinetic - elastic - plastic - friction - viscous + artificial-stress work - springs - contact work along the XSPH drift"}}}};
   s.scalars = cutting_scalars();
   s.checkpoints = true;
   s.footprint = [](const Values& v) {

@@ -69,6 +69,8 @@ void SolidSph::set_tool_thermal(HeatMaterial tool_heat, double depth) {
 }
 
 void SolidSph::deposit_friction_heat(std::size_t i, double heat) {
+  const double eta = contact_.options().heat_fraction;
+  if (eta > 0.0) energy_.friction += heat / eta;
   heat_.deposit_friction(i, heat, rho_[i], m_[i], T_[i], tool_body_.active);
 }
 
@@ -176,7 +178,9 @@ void SolidSph::save_state(BinaryWriter& w) const {
   w.u64(static_cast<std::uint64_t>(heat_.steps));
   for (double d : {time_, heat_.plastic_heat, heat_.heat_lost, heat_.friction_heat, heat_.dt_acc, heat_.heat_sunk, heat_.friction_heat_tool,
                    heat_.tool_share, last_dt_, contact_.position.x(), contact_.position.y(), contact_.velocity.x(),
-                   contact_.velocity.y(), contact_.force.x(), contact_.force.y()})
+                   contact_.velocity.y(), contact_.force.x(), contact_.force.y(), energy_.tool_work, energy_.stress_work,
+                   energy_.internal_work, energy_.plastic, energy_.viscous, energy_.artificial_stress, energy_.friction,
+                   energy_.xsph_contact})
     w.f64(d);
 }
 
@@ -226,6 +230,9 @@ void SolidSph::load_state(BinaryReader& r) {
   contact_.velocity.y() = r.f64();
   contact_.force.x() = r.f64();
   contact_.force.y() = r.f64();
+  for (double* d : {&energy_.tool_work, &energy_.stress_work, &energy_.internal_work, &energy_.plastic, &energy_.viscous,
+                    &energy_.artificial_stress, &energy_.friction, &energy_.xsph_contact})
+    *d = r.f64();
   // The neighbour lists as they were (built at x_listed_), then the pair geometry and packed
   // particle data of the current positions, which the next step's rate pass reuses; the
   // accelerations themselves (with the contact forces of the last step) are the stored ones.
@@ -317,6 +324,12 @@ void SolidSph::accelerations() {
   double* const pwr = pair_wr_.data();
   std::uint32_t* const cidx = pair_j_.data();
   std::uint32_t* const ccount = pair_count_.data();
+  pow_stress_.resize(n);
+  pow_visc_.resize(n);
+  pow_art_.resize(n);
+  double* const pst = pow_stress_.data();
+  double* const pvi = pow_visc_.data();
+  double* const par = pow_art_.data();
   auto row = [=](std::size_t i, Vec2* acc) {
     // the captured pointers as locals: GCC does not vectorise loads through the closure
     const ParticleData* const P = pd;
@@ -326,7 +339,7 @@ void SolidSph::accelerations() {
     double* const WR = pwr;
     std::uint32_t* const CJ = cidx;
     const ParticleData fi = P[i];
-    double ax = 0.0, ay = 0.0;
+    double ax = 0.0, ay = 0.0, e_st = 0.0, e_vi = 0.0, e_ar = 0.0;
     constexpr std::size_t kChunk = 64;
     std::uint32_t sel[kChunk];
     double fx[kChunk], fy[kChunk], bx[kChunk], by[kChunk];
@@ -341,7 +354,7 @@ void SolidSph::accelerations() {
         sel[m] = j;
         m += xx * xx + xy * xy < support2 ? 1 : 0;
       }
-#pragma omp simd
+#pragma omp simd reduction(+ : e_st, e_vi, e_ar)
       for (std::size_t u = 0; u < m; ++u) {
         const ParticleData& fj = P[sel[u]];
         const double xx = fi.x - fj.x, xy = fi.y - fj.y;
@@ -358,6 +371,9 @@ void SolidSph::accelerations() {
         WR[out + u] = xs * (wij / rhobar);  // XSPH weight of the rate pass (xs = 1, or 0 without XSPH)
         CJ[out + u] = sel[u];
         double txx = fi.sxx + fj.sxx, txy = fi.sxy + fj.sxy, tyy = fi.syy + fj.syy;
+        // energy ledger: the pair's power m_i m_j (T g).(v_i - v_j), its viscous and artificial-stress
+        // parts (the stress part is the rest)
+        const double dvx = fi.vx - fj.vx, dvy = fi.vy - fj.vy, mm = fi.m * fj.m;
         // Monaghan viscosity on approaching pairs (vr < 0)
         const double vr = (fi.vx - fj.vx) * xx + (fi.vy - fj.vy) * xy;
         const double mu = h * vr / (r2 + eta2);
@@ -368,12 +384,18 @@ void SolidSph::accelerations() {
         const double f = wij * inv_wdx;
         const double f2 = f * f;
         const double f4 = artf * (f2 * f2);  // artf = 1 or 0 (then R = 0 too): exact
+        const double pv = mm * pi * dwr * vr;  // dissipated: -(power of the viscous pair force) >= 0
+        const double rxx = f4 * (fi.axx + fj.axx), rxy = f4 * (fi.axy + fj.axy), ryy = f4 * (fi.ayy + fj.ayy);
+        const double pa = mm * ((rxx * gx + rxy * gy) * dvx + (rxy * gx + ryy * gy) * dvy);
         txx += f4 * (fi.axx + fj.axx);
         txy += f4 * (fi.axy + fj.axy);
         tyy += f4 * (fi.ayy + fj.ayy);
         const double tgx = txx * gx + txy * gy, tgy = txy * gx + tyy * gy;
         fx[u] = fj.m * tgx;
         fy[u] = fj.m * tgy;
+        e_st += mm * (tgx * dvx + tgy * dvy) + pv - pa;  // total + dissipated - artificial = stress part
+        e_vi += pv;
+        e_ar += pa;
         bx[u] = fi.m * tgx;
         by[u] = fi.m * tgy;
       }
@@ -387,6 +409,9 @@ void SolidSph::accelerations() {
       out += m;
     }
     ccount[i] = static_cast<std::uint32_t>(out - hoff[i]);
+    pst[i] = e_st;
+    pvi[i] = e_vi;
+    par[i] = e_ar;
     acc[i].x() += ax;
     acc[i].y() += ay;
   };
@@ -434,6 +459,11 @@ void SolidSph::step(double dt) {
   rho_new_.resize(n);
   s_new_.resize(n);
   plastic_dT_.resize(n);  // set for every particle by the constitutive update
+  work_int_.resize(n);
+  work_plastic_.resize(n);
+  auto& work_int = work_int_;
+  auto& work_plastic = work_plastic_;
+  const double K_bulk = mat_.bulk();
   auto& xsph = xsph_;
   auto& rho_new = rho_new_;
   auto& s_new = s_new_;
@@ -565,6 +595,11 @@ void SolidSph::step(double dt) {
     const double third = trd / 3.0;
     const Stress3& S = S_[i];
     const double sxx = S(0, 0), syy = S(1, 1), szz = S(2, 2), sxy = S(0, 1);
+    {  // constitutive power V sigma:D over the step (plane strain, D_zz = 0), stress of x^n
+      const double p = K_bulk * (rho_[i] / mat_.density - 1.0);
+      work_int[i] = dt * m_[i] / rho_[i] * (sxx * dxx + syy * dyy + 2.0 * sxy * dxy - p * trd);
+    }
+    work_plastic[i] = 0.0;
     Stress3 s = Stress3::Zero();
     s(0, 0) = sxx + dt * (2.0 * G * (dxx - third) + 2.0 * w * sxy);
     s(1, 1) = syy + dt * (2.0 * G * (dyy - third) - 2.0 * w * sxy);
@@ -583,9 +618,14 @@ void SolidSph::step(double dt) {
         eps_p_[i] += rr.delta_eps_p;
         last_dep_[i] = rr.delta_eps_p;
         plastic_dT[i] = chi_rc * rr.flow_stress * rr.delta_eps_p;
+        work_plastic[i] = m_[i] / rho_[i] * rr.flow_stress * rr.delta_eps_p;
       }
     }
     s_new[i] = s;
+  }
+  for (std::size_t i = 0; i < n; ++i) {  // in index order: the same sums with any thread count
+    energy_.internal_work += work_int_[i];
+    energy_.plastic += work_plastic_[i];
   }
   if (heat_.active)
     heat_.update(dt, plastic_dT, x_, m_, rho_, T_, nl_, kernel_, dx_, tool_body_, contact_.position, time_, steps_);
@@ -603,13 +643,23 @@ void SolidSph::step(double dt) {
   const auto cap = [this](std::size_t i) { return shear_cap(i); };
   const auto heat = [this](std::size_t i, double q) { deposit_friction_heat(i, q); };
   const bool penalty = contact_.active() && contact_.options().model == ContactModel::penalty;
-  if (penalty) contact_.penalty(dt, dx_, x_, v_, m_, fixed_, a_, cap, heat);
+  for (std::size_t i = 0; i < n; ++i) {  // pair powers at x^{n+1}, v^{n+1/2}, in index order
+    energy_.stress_work += dt * pow_stress_[i];
+    energy_.viscous += dt * pow_visc_[i];
+    energy_.artificial_stress += dt * pow_art_[i];
+  }
+  if (penalty) {
+    contact_.penalty(dt, dx_, x_, v_, m_, fixed_, a_, cap, heat);
+    for (const auto& k : contact_.contacts()) energy_.xsph_contact += dt * (k.fn + k.ft).dot(xsph_[k.particle]);
+  }
 #pragma omp parallel for schedule(static) if (n >= detail::kOmpMinParticles)
   for (std::size_t i = 0; i < n; ++i) v_[i] += 0.5 * dt * a_[i];
   time_ += dt;
   if (contact_.active() && contact_.options().model == ContactModel::velocity)
     contact_.velocity_level(dt, dx_, x_, v_, m_, fixed_, cap, heat);
   if (penalty) contact_.advance(dt);
+  if (contact_.active()) energy_.tool_work -= dt * contact_.force.dot(contact_.velocity);
+  last_dt_ = dt;
   ++steps_;
 }
 
@@ -634,6 +684,16 @@ Vec2 SolidSph::momentum() const {
 double SolidSph::kinetic_energy() const {
   double e = 0.0;
   for (std::size_t i = 0; i < x_.size(); ++i) e += 0.5 * m_[i] * v_[i].squaredNorm();
+  return e;
+}
+
+double SolidSph::contact_spring_energy() const {
+  if (!contact_.active() || contact_.options().model != ContactModel::penalty || !(last_dt_ > 0.0)) return 0.0;
+  double e = 0.0;
+  for (const auto& k : contact_.contacts()) {  // springs of stiffness alpha m / dt^2
+    const double stiff = contact_.options().alpha * m_[k.particle] / (last_dt_ * last_dt_);
+    e += 0.5 * (k.fn.squaredNorm() + k.ft.squaredNorm()) / stiff;
+  }
   return e;
 }
 

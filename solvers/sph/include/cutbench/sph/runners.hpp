@@ -48,6 +48,9 @@ struct CuttingSetup {
   double tool_heat_share = -1.0;  // friction heat to the tool; < 0: effusivity partition (ContactOptions)
   bool shear_cap = false;         // Zorev cap of the friction stress (ContactOptions::shear_cap)
   double contact_stiffness = 0.1; // penalty alpha (ContactOptions::alpha), a choice (not in the paper)
+  // stabilisers (SolidOptions; the paper does not list them): Monaghan viscosity, Gray artificial
+  // stress, XSPH
+  double alpha_visc = 1.0, beta_visc = 1.0, artificial_stress = 0.3, xsph = 0.5;
 };
 
 // The material, thermal and contact inputs run_cutting() builds from a setup (one place, so that
@@ -64,6 +67,11 @@ CuttingInputs cutting_inputs(const CuttingSetup& setup);
 
 struct CuttingResult {
   std::vector<double> t, cut, fc, ft;  // windowed means of the force on the tool, N/m
+  // First-law audit at the end of each window (J/m, from the start): the tool's work on the
+  // workpiece, kinetic and elastic energy, plastic, friction and artificial-viscosity dissipation,
+  // work of the artificial-stress forces, energy in the contact springs, and the two halves of the
+  // stress power (pair forces on the particles; constitutive sum V sigma:D), see SolidSph::EnergyLedger.
+  std::vector<double> e_tool, e_kinetic, e_elastic, e_plastic, e_friction, e_viscous, e_art, e_spring, e_stress, e_internal, e_xsph;
   double fc_mean = 0.0, ft_mean = 0.0;
   double rake_temperature = 0.0, T_max = 0.0, chip_height = 0.0;
   double rake_temperature_avg = 0.0;  // rake-face sample averaged over the steady part's windows

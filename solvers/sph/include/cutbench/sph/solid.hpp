@@ -129,6 +129,26 @@ public:
   Vec2 momentum() const;
   double kinetic_energy() const;
   double strain_energy() const;  // elastic: sum V (p^2/(2K) + S:S/(4G))
+  // Mechanical energy ledger, J per metre of depth, accumulated over the steps (first-law audit).
+  // The pair powers are evaluated with the forces of the end of each step (positions x^{n+1},
+  // velocities v^{n+1/2}) times dt; the constitutive ones in the stress update of the step.
+  // Particles with a prescribed velocity are taken at rest (their share of a pair's power is zero).
+  struct EnergyLedger {
+    double tool_work = 0.0;          // work of the tool on the workpiece, -F_tool . v_tool dt
+    double stress_work = 0.0;        // work of the stress pair forces (sigma_i/rho_i^2 + sigma_j/rho_j^2) on the particles
+    double internal_work = 0.0;      // constitutive power sum V sigma:D of the stress update
+    double plastic = 0.0;            // plastic dissipation sum V sigma_y d(eps_p)
+    double viscous = 0.0;            // dissipated by the artificial viscosity (>= 0)
+    double artificial_stress = 0.0;  // work of the artificial-stress pair forces on the particles
+    double friction = 0.0;           // slip dissipation at the tool (friction heat / heat_fraction)
+    // work of the contact forces along the XSPH part of the particles' drift, sum f_i . xsph_i dt:
+    // the penalty gap follows the drifted positions while the forces work on v only, so this is
+    // energy the contact springs gain (< 0: given to the particles) without work of the tool
+    double xsph_contact = 0.0;
+  };
+  const EnergyLedger& energy() const { return energy_; }
+  // energy stored in the penalty contact's normal and stick springs at the last step (0 otherwise)
+  double contact_spring_energy() const;
 
 private:
   std::vector<Vec2> x_, v_, a_;
@@ -176,6 +196,10 @@ private:
   std::vector<RateAcc> racc_;
   std::vector<Mat2> lren_;
   std::vector<double> rho_new_, plastic_dT_;
+  // per particle, for the energy ledger: powers of its half row's pairs (stress, viscosity,
+  // artificial stress) from accelerations(); constitutive and plastic work of the step
+  std::vector<double> pow_stress_, pow_visc_, pow_art_, work_int_, work_plastic_;
+  EnergyLedger energy_;
   std::vector<double> last_dep_;  // plastic strain increment of each particle's last plastic step
   std::vector<std::vector<Vec2>> acc_part_;
   std::vector<std::vector<RateAcc>> racc_part_;

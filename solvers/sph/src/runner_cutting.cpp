@@ -199,7 +199,10 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
 
 namespace {
 // The workpiece particles with temperature, plastic strain and the surface flag.
-Snapshot workpiece_snapshot(const SolidSph& s, std::size_t n) {
+// The workpiece state; `surface` is the detection flag, `surface_group` the paper's Fig. 2 groups
+// for the thermal boundary conditions: 0 interior, 1 surface particle losing heat to the air
+// (convection and radiation), 2 surface particle within 1.5 dx of the tool (no air loss).
+Snapshot workpiece_snapshot(const SolidSph& s, std::size_t n, const RoundedPolygon& tool, double dx) {
   Snapshot snap;
   snap.time = s.time();
   for (std::size_t i = 0; i < n; ++i) {
@@ -208,10 +211,40 @@ Snapshot workpiece_snapshot(const SolidSph& s, std::size_t n) {
   }
   snap.add("T", "K", s.temperature());
   snap.add("eps_p", "1", s.plastic_strain());
-  std::vector<double> surf(n, 0.0);
-  for (std::size_t i = 0; i < n && i < s.surface().surface.size(); ++i) surf[i] = s.surface().surface[i];
+  std::vector<double> surf(n, 0.0), group(n, 0.0);
+  for (std::size_t i = 0; i < n && i < s.surface().surface.size(); ++i) {
+    surf[i] = s.surface().surface[i];
+    if (surf[i] != 0.0) group[i] = tool.at(s.positions()[i] - s.tool_position()).distance < 1.5 * dx ? 2.0 : 1.0;
+  }
   snap.add("surface", "1", surf);
+  snap.add("surface_group", "1", group);
   return snap;
+}
+
+// Surface detection on the uncut surface (see CuttingResult::surface_top_fraction).
+void surface_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const std::vector<char>& fixed, const SolidSph& s,
+                     CuttingResult& r) {
+  const auto& flag = s.surface().surface;
+  if (flag.size() < x0.size()) {
+    r.surface_top_fraction = r.surface_second_fraction = nan_value();
+    return;
+  }
+  const double x_max = s.tool_position().x() - 3.0 * c.uncut_thickness;
+  std::map<long, std::vector<std::pair<double, char>>> columns;  // initial column -> (y, flag)
+  for (std::size_t i = 0; i < x0.size(); ++i) {
+    if (fixed[i] || s.positions()[i].x() > x_max) continue;
+    columns[std::lround(x0[i].x() / r.dx)].emplace_back(s.positions()[i].y(), flag[i]);
+  }
+  double n = 0.0, top = 0.0, second = 0.0;
+  for (auto& [k, col] : columns) {
+    if (col.size() < 2) continue;
+    std::sort(col.begin(), col.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    n += 1.0;
+    top += col[0].second ? 1.0 : 0.0;
+    second += col[1].second ? 1.0 : 0.0;
+  }
+  r.surface_top_fraction = n > 0.0 ? top / n : nan_value();
+  r.surface_second_fraction = n > 0.0 ? second / n : nan_value();
 }
 
 // Rake-face temperature: the mean over the free particles within 1.5 dx of the tool whose contact
@@ -363,7 +396,7 @@ public:
     acc_t_ += dt;
     if (s_.time() >= t_steady_) add_steady(fc, ft, dt);
     if (snap_taken_ < n_snap_ - 1 && s_.time() >= t_end_ * static_cast<double>(snap_taken_ + 1) / n_snap_) {
-      r_.snapshots.push_back(workpiece_snapshot(s_, w_.x.size()));
+      r_.snapshots.push_back(workpiece_snapshot(s_, w_.x.size(), *tool_, w_.dx));
       ++snap_taken_;
     }
     if (s_.time() >= t_next_ || s_.time() >= t_end_) record_window();
@@ -416,7 +449,8 @@ public:
     r.rake_temperature_avg = rake_avg_n_ ? rake_avg_sum_ / rake_avg_n_ : nan_value();
     tool_temperatures(c_, s_, *tool_, w_.dx, r);
     r.chip_height = chip_top - c_.height;
-    r.snapshot = workpiece_snapshot(s_, w_.x.size());
+    r.snapshot = workpiece_snapshot(s_, w_.x.size(), *tool_, w_.dx);
+    surface_metrics(c_, w_.x, w_.fixed, s_, r);
     r.snapshots.push_back(r.snapshot);
     r.tool_snapshot = tool_snapshot(s_);
     r.friction_heat = s_.friction_heat();
@@ -609,6 +643,8 @@ std::vector<OutputSpec> cutting_scalars() {
                {"chip_segments", Dim::dimensionless, "peaks of the column-mean eps_p profile along the uncut layer after 2 t_u of cut (3-column mean, hysteresis 0.2 x mean)"},
                {"serration_pitch", Dim::length, "mean distance between eps_p peaks along the uncut layer (NaN below 2 peaks)"},
                {"serration_cv", Dim::dimensionless, "std / mean of the smoothed column-mean eps_p profile after 2 t_u of cut"},
+               {"surface_top_fraction", Dim::dimensionless, "share of the lattice columns more than 3 t_u ahead of the tool whose top particle is detected as surface (NaN without surface detection)"},
+               {"surface_second_fraction", Dim::dimensionless, "share of those columns whose second particle from the top is detected as surface too"},
                {"tool_work", Dim::force_per_width, "work of the tool on the workpiece over the run, J per metre of depth"},
                {"energy_residual", Dim::dimensionless, "first law at the end: (tool work - kinetic - elastic - plastic - friction - viscous + artificial-stress work - contact springs - contact work along the XSPH drift) / tool work"},
                {"kinetic_fraction", Dim::dimensionless, "kinetic energy at the end / tool work"},
@@ -693,6 +729,7 @@ RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
                  {"chip_thickness", r.chip_thickness}, {"chip_T_mean", r.chip_T_mean}, {"chip_ratio", r.chip_thickness / c.uncut_thickness},
                  {"chip_curl", r.chip_curl * 3.14159265358979323846 / 180.0}, {"chip_segments", r.chip_segments},
                  {"serration_pitch", r.serration_pitch}, {"serration_cv", r.serration_cv},
+                 {"surface_top_fraction", r.surface_top_fraction}, {"surface_second_fraction", r.surface_second_fraction},
                  {"F_c_rake", r.force_rake.x()}, {"F_t_rake", r.force_rake.y()},
                  {"F_c_edge", r.force_edge.x()}, {"F_t_edge", r.force_edge.y()},
                  {"F_c_flank", r.force_flank.x()}, {"F_t_flank", r.force_flank.y()},
@@ -704,7 +741,7 @@ RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
                       {"friction_heat_tool_share", "1"}, {"plastic_heat_below_fraction", "1"}, {"stored_layer_fraction", "1"},
                       {"stored_below_fraction", "1"}, {"stored_chip_fraction", "1"}, {"stored_tool_fraction", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
                       {"chip_thickness", "m"}, {"chip_T_mean", "K"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},
-                      {"serration_pitch", "m"}, {"serration_cv", "1"},
+                      {"serration_pitch", "m"}, {"serration_cv", "1"}, {"surface_top_fraction", "1"}, {"surface_second_fraction", "1"},
                       {"F_c_rake", "N/m"}, {"F_t_rake", "N/m"}, {"F_c_edge", "N/m"}, {"F_t_edge", "N/m"},
                       {"F_c_flank", "N/m"}, {"F_t_flank", "N/m"}, {"rake_friction_ratio", "1"}, {"rake_slip_fraction", "1"}};
   {  // first-law audit at the end of the run, as fractions of the tool's work

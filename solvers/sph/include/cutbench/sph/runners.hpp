@@ -98,6 +98,10 @@ struct CuttingResult {
   std::vector<double> chip_x0, chip_u, chip_eps, chip_cx, chip_cy, chip_s;
   double chip_thickness = 0.0, chip_length = 0.0, chip_curl = 0.0, chip_T_mean = 0.0;
   double chip_segments = 0.0, serration_pitch = 0.0, serration_cv = 0.0;
+  // Surface detection on the uncut surface at the end (paper Fig. 2): over the lattice columns
+  // more than 3 t_u ahead of the tool, the share whose top particle is a surface particle and the
+  // share whose second particle from the top is one too (NaN without surface detection)
+  double surface_top_fraction = 0.0, surface_second_fraction = 0.0;
   // Steady-part mean force on the tool split by the tool face of each contact normal (rake face,
   // rounded edge, clearance face), N/m; on the rake face: sum |f_t| / sum |f_n| (the friction
   // ratio the chip actually uses) and the share of contacts at the Coulomb limit (sliding).

@@ -27,6 +27,7 @@ namespace cutbench::sph {
 CuttingInputs cutting_inputs(const CuttingSetup& c) {
   CuttingInputs in;
   in.material.plastic = true;
+  if (c.flow_law == 1) in.material.jc = sima_ozel_ti6al4v();
   if (c.enhanced_thermal) {
     in.thermal.scheme = HeatScheme::fmfs;
   } else {  // reference model: Brookshaw everywhere, no convection or radiation
@@ -597,6 +598,11 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
         .bind(param("beta_visc", Dim::dimensionless, "Monaghan artificial viscosity beta (assumed, not in the paper)", def.beta_visc, 0.0, 10.0), &S::beta_visc)
         .bind(param("artificial_stress", Dim::dimensionless, "Gray artificial stress epsilon, 0 = off (assumed, not in the paper)", def.artificial_stress, 0.0, 1.0), &S::artificial_stress)
         .bind(param("xsph", Dim::dimensionless, "XSPH position smoothing epsilon, 0 = off (assumed, not in the paper)", def.xsph, 0.0, 1.0), &S::xsph)
+        .add(option_param("flow_law", "flow stress of the workpiece",
+                          {{"johnson_cook", "Johnson-Cook with the paper's Table 1 constants (Eq. 9)"},
+                           {"sima_ozel", "Sima and Oezel (2010) Johnson-Cook with temperature-dependent strain softening, their Ti6Al4V constants (the law of the authors' ref. [20] for the Fig. 10 cut)"}},
+                          "johnson_cook"),
+             [](S& s, double v) { s.flow_law = static_cast<int>(v); })
         .bind(switch_param("shear_cap", "true: cap the friction stress at the chip's shear flow stress (Zorev); false: Coulomb only (paper)", false), &S::shear_cap);
     return p;
   }();

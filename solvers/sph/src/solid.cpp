@@ -672,7 +672,9 @@ double SolidSph::yield_floor(double T) const {
   const auto& jc = mat_.jc;
   if (!(jc.A > 0.0) || !(jc.B >= 0.0) || !(jc.C >= 0.0)) return 0.0;  // no cheap bound: always return-map
   const double ts = std::clamp((T - jc.T_ref) / (jc.T_melt - jc.T_ref), 0.0, 1.0);
-  return jc.A * (jc.m <= 1.0 ? jc.m : 1.0) * (1.0 - ts);
+  // softening: the bracket D + (1 - D) tanh(.)^s is at least D = 1 - (T / T_m)^d
+  const double soft = jc.softening ? std::max(0.0, 1.0 - std::pow(std::max(T, 0.0) / jc.T_melt, jc.sd)) : 1.0;
+  return jc.A * (jc.m <= 1.0 ? jc.m : 1.0) * (1.0 - ts) * soft;
 }
 
 Vec2 SolidSph::momentum() const {

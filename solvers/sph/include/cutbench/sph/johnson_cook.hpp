@@ -15,12 +15,22 @@ struct JohnsonCook {
   double A = 862e6, B = 331e6, C = 0.01, m = 0.8, n = 0.35;  // Ti6Al4V, paper Sec. 5.2
   double T_ref = 300.0, T_melt = 1878.0;                      // K, paper Table 1
   double eps_rate_ref = 1.0;                                 // 1/s
+  // Temperature-dependent strain softening of Sima & Oezel (2010), the law of the authors'
+  // refinement paper (their ref. [20]) for the Fig. 10 cut; off unless `softening`:
+  //   sigma_y = [A + B eps^n exp(-eps^a)] [rate factor] [1 - T*^m] [D + (1 - D) tanh(1 / (eps + S)^c)^s],
+  //   D = 1 - (T / T_m)^d,  S = (T / T_m)^b  (T in K).
+  bool softening = false;
+  double sa = 0.0, sb = 0.0, sc = 0.0, sd = 0.0, ss = 0.0;
 
   double flow_stress(double eps_p, double eps_rate_p, double T) const;
   // d sigma_y / d eps_p at fixed rate, and d sigma_y / d (eps rate) at fixed strain.
   double d_strain(double eps_p, double eps_rate_p, double T) const;
   double d_rate(double eps_p, double eps_rate_p, double T) const;
 };
+
+// The Sima & Oezel (2010) Ti6Al4V constants (A 724.7 MPa, B 683.1 MPa, C 0.035, m 1, n 0.47,
+// a 2, b 5, c 2, d 1, s 0.05, T_m 1878 K, T_r 300 K, reference rate 1/s).
+JohnsonCook sima_ozel_ti6al4v();
 
 // 3x3 symmetric stress with the out-of-plane component (plane strain).
 using Stress3 = Eigen::Matrix3d;

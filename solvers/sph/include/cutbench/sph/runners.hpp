@@ -51,6 +51,7 @@ struct CuttingSetup {
   // stabilisers (SolidOptions; the paper does not list them): Monaghan viscosity, Gray artificial
   // stress, XSPH
   double alpha_visc = 1.0, beta_visc = 1.0, artificial_stress = 0.3, xsph = 0.5;
+  int flow_law = 0;  // 0: Johnson-Cook with the Table 1 constants; 1: Sima & Oezel (2010) softening law
 };
 
 // The material, thermal and contact inputs run_cutting() builds from a setup (one place, so that

@@ -124,6 +124,7 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
       if (x0[i].x() > x_done) members.emplace_back(-x0[i].x(), i);
     }
   std::sort(members.begin(), members.end());
+  std::vector<std::vector<std::size_t>> columns;  // the lifted particles of each chip column
   double area = 0.0, t_sum = 0.0;
   std::size_t t_n = 0;
   for (std::size_t a = 0; a < members.size();) {
@@ -134,9 +135,11 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
     double eps = 0.0, col_area = 0.0, col_T = 0.0, col_heat = 0.0;
     Vec2 cen = Vec2::Zero();
     std::size_t lifted = 0;
+    std::vector<std::size_t> col_particles;
     for (std::size_t k = a; k < b; ++k) {
       const std::size_t i = members[k].second;
       if (s.positions()[i].y() <= c.height) continue;
+      col_particles.push_back(i);
       eps += s.plastic_strain()[i];
       cen += s.positions()[i];
       ++lifted;
@@ -151,6 +154,7 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
       r.chip_eps.push_back(eps / cnt);
       r.chip_cx.push_back(cen.x() / cnt);
       r.chip_cy.push_back(cen.y() / cnt);
+      columns.push_back(std::move(col_particles));
       area += col_area;
       t_sum += col_T;
       r.stored_chip += col_heat;
@@ -169,6 +173,24 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
   r.chip_T_mean = t_n ? t_sum / static_cast<double>(t_n) : nan_value();
   r.chip_curl = nan_value();
   r.chip_segments = r.serration_pitch = r.serration_cv = nan_value();
+  r.tooth_segments = r.tooth_pitch = r.tooth_amplitude = nan_value();
+  // thickness of each column across the chip: the span of its lifted particles along the normal of
+  // the smoothed centroid line, plus one particle spacing (the free-surface profile: teeth of a
+  // serrated chip are thick columns between thin ones)
+  r.chip_t.assign(nc, 0.0);
+  for (std::size_t k = 0; k < nc; ++k) {
+    const std::size_t k0 = k > 0 ? k - 1 : k, k1 = k + 1 < nc ? k + 1 : k;
+    Vec2 tan(sx[k1] - sx[k0], sy[k1] - sy[k0]);
+    if (!(tan.norm() > 0.0)) tan = Vec2(1.0, 0.0);
+    const Vec2 nrm(-tan.y() / tan.norm(), tan.x() / tan.norm());
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t i : columns[k]) {
+      const double d = (s.positions()[i] - Vec2(r.chip_cx[k], r.chip_cy[k])).dot(nrm);
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+    r.chip_t[k] = hi - lo + dx;
+  }
   if (nc < 6) return;
   // curl: direction of the (smoothed) centroid line over the first third versus the last third
   const std::size_t third = nc / 3;
@@ -194,6 +216,32 @@ void chip_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const Soli
   r.chip_segments = static_cast<double>(peaks.size());
   r.serration_pitch = peaks.size() >= 2 ? (peaks.back() - peaks.front()) / static_cast<double>(peaks.size() - 1)
                                         : nan_value();
+  // saw-tooth of the free surface: the column thickness against u after the entry transient,
+  // smoothed over 3 columns; teeth = peaks with a hysteresis of 0.1 x the mean thickness; pitch =
+  // their mean spacing along the uncut layer; amplitude = half the mean height of a tooth over the
+  // lowest point before the next one
+  std::vector<double> tu, th;
+  for (std::size_t k = 0; k < nc; ++k)
+    if (r.chip_u[k] >= 2.0 * c.uncut_thickness) {
+      tu.push_back(r.chip_u[k]);
+      th.push_back(r.chip_t[k]);
+    }
+  if (tu.size() < 6) return;
+  th = moving_average(th, 1);
+  const auto teeth = serration_peaks(tu, th, 0.1);
+  r.tooth_segments = static_cast<double>(teeth.size());
+  if (teeth.size() < 2) return;
+  r.tooth_pitch = (teeth.back() - teeth.front()) / static_cast<double>(teeth.size() - 1);
+  double height = 0.0;
+  for (std::size_t p = 0; p + 1 < teeth.size(); ++p) {
+    double top = -std::numeric_limits<double>::infinity(), low = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < tu.size(); ++k) {
+      if (tu[k] == teeth[p]) top = th[k];
+      if (tu[k] > teeth[p] && tu[k] < teeth[p + 1]) low = std::min(low, th[k]);
+    }
+    height += top - low;
+  }
+  r.tooth_amplitude = 0.5 * height / static_cast<double>(teeth.size() - 1);
 }
 
 }  // namespace
@@ -649,6 +697,9 @@ std::vector<OutputSpec> cutting_scalars() {
                {"chip_segments", Dim::dimensionless, "peaks of the column-mean eps_p profile along the uncut layer after 2 t_u of cut (3-column mean, hysteresis 0.2 x mean)"},
                {"serration_pitch", Dim::length, "mean distance between eps_p peaks along the uncut layer (NaN below 2 peaks)"},
                {"serration_cv", Dim::dimensionless, "std / mean of the smoothed column-mean eps_p profile after 2 t_u of cut"},
+               {"tooth_segments", Dim::dimensionless, "teeth of the chip's free surface: peaks of the column thickness across the chip against the position along the uncut layer after 2 t_u of cut (3-column mean, hysteresis 0.1 x mean thickness)"},
+               {"tooth_pitch", Dim::length, "mean distance between the teeth along the uncut layer (NaN below 2 teeth)"},
+               {"tooth_amplitude", Dim::length, "half the mean height of a tooth over the thinnest column before the next one (NaN below 2 teeth)"},
                {"surface_top_fraction", Dim::dimensionless, "share of the lattice columns more than 3 t_u ahead of the tool whose top particle is detected as surface (NaN without surface detection)"},
                {"surface_second_fraction", Dim::dimensionless, "share of those columns whose second particle from the top is detected as surface too"},
                {"tool_work", Dim::force_per_width, "work of the tool on the workpiece over the run, J per metre of depth"},
@@ -696,6 +747,7 @@ RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
   chip.add("eps_p", "1", r.chip_eps);
   chip.add("cx", "m", r.chip_cx);
   chip.add("cy", "m", r.chip_cy);
+  chip.add("thickness", "m", r.chip_t);
   out.tables.push_back(std::move(chip));
   Table en;
   en.name = "energy";
@@ -735,6 +787,7 @@ RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
                  {"chip_thickness", r.chip_thickness}, {"chip_T_mean", r.chip_T_mean}, {"chip_ratio", r.chip_thickness / c.uncut_thickness},
                  {"chip_curl", r.chip_curl * 3.14159265358979323846 / 180.0}, {"chip_segments", r.chip_segments},
                  {"serration_pitch", r.serration_pitch}, {"serration_cv", r.serration_cv},
+                 {"tooth_segments", r.tooth_segments}, {"tooth_pitch", r.tooth_pitch}, {"tooth_amplitude", r.tooth_amplitude},
                  {"surface_top_fraction", r.surface_top_fraction}, {"surface_second_fraction", r.surface_second_fraction},
                  {"F_c_rake", r.force_rake.x()}, {"F_t_rake", r.force_rake.y()},
                  {"F_c_edge", r.force_edge.x()}, {"F_t_edge", r.force_edge.y()},
@@ -748,6 +801,7 @@ RunOutput cutting_output(const CuttingSetup& c, const CuttingResult& r) {
                       {"stored_below_fraction", "1"}, {"stored_chip_fraction", "1"}, {"stored_tool_fraction", "1"}, {"T_max_x", "m"}, {"T_max_y", "m"},
                       {"chip_thickness", "m"}, {"chip_T_mean", "K"}, {"chip_ratio", "1"}, {"chip_curl", "rad"}, {"chip_segments", "1"},
                       {"serration_pitch", "m"}, {"serration_cv", "1"}, {"surface_top_fraction", "1"}, {"surface_second_fraction", "1"},
+                      {"tooth_segments", "1"}, {"tooth_pitch", "m"}, {"tooth_amplitude", "m"},
                       {"F_c_rake", "N/m"}, {"F_t_rake", "N/m"}, {"F_c_edge", "N/m"}, {"F_t_edge", "N/m"},
                       {"F_c_flank", "N/m"}, {"F_t_flank", "N/m"}, {"rake_friction_ratio", "1"}, {"rake_slip_fraction", "1"}};
   {  // first-law audit at the end of the run, as fractions of the tool's work
@@ -807,7 +861,8 @@ SolverSpec detail::cutting_spec() {
                 {"s", "m", "arc length along the chip's centroid line"},
                 {"eps_p", "1", "column-mean equivalent plastic strain"},
                 {"cx", "m", "x of the column centroid"},
-                {"cy", "m", "y of the column centroid"}}},
+                {"cy", "m", "y of the column centroid"},
+                {"thickness", "m", "span of the column's lifted particles across the chip (normal to the smoothed centroid line) plus dx"}}},
               {"energy",
                "first-law audit at the end of each force window (from the start of the run)",
                {{"t", "s", "time"},

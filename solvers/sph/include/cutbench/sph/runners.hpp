@@ -97,6 +97,10 @@ struct CuttingResult {
   // (u >= 2 t_u), smoothed over 3 columns, peaks found with hysteresis 0.2 x mean (segments), their
   // mean spacing in u (pitch, along the uncut layer), std/mean of the profile (cv).
   std::vector<double> chip_x0, chip_u, chip_eps, chip_cx, chip_cy, chip_s;
+  // thickness of each chip column across the chip and the saw-tooth of the free surface measured on
+  // it after the entry transient (teeth, their pitch along the uncut layer and half their height)
+  std::vector<double> chip_t;
+  double tooth_segments = 0.0, tooth_pitch = 0.0, tooth_amplitude = 0.0;
   double chip_thickness = 0.0, chip_length = 0.0, chip_curl = 0.0, chip_T_mean = 0.0;
   double chip_segments = 0.0, serration_pitch = 0.0, serration_cv = 0.0;
   // Surface detection on the uncut surface at the end (paper Fig. 2): over the lattice columns

@@ -98,7 +98,7 @@ LimitModel cutting_model(const CuttingSetup& c) {
   if (!(c.contact_length > 0.0)) throw InputError("contact_length", "must be positive");
   if (c.n < 2) throw InputError("n", "need at least 2 cells across t1");
   if (!(c.depth == 0.0 || (c.depth >= 0.25 && c.depth <= 20.0)))
-    throw InputError("depth", "workpiece depth below the cutting line must be 0 (layer only) or in [0.25, 20] t1");
+    throw InputError("workpiece_depth", "workpiece depth below the cutting line must be 0 (layer only) or in [0.25, 20] t1");
   if (!(c.exit_length >= 0.5 && c.exit_length <= 20.0)) throw InputError("exit_length", "must be in [0.5, 20] t1");
   const double t1 = c.t1, t2 = chip_thickness(t1, c.phi, c.alpha);
   const Vector2d O(0.0, 0.0), r(std::sin(c.alpha), std::cos(c.alpha));

@@ -360,7 +360,7 @@ const DeclaredParams<CuttingRun>& cutting_declaration() {
              [](S& s, double v) { s.geometry.eta2 = v; })
         .add(param("chip_extra", Dim::dimensionless, "length of the chip mesh beyond the contact, in t2", 2.0, 0.5, 10.0),
              [](S& s, double v) { s.geometry.chip_extra = v; })
-        .add(param("depth", Dim::dimensionless, "workpiece depth below the cutting line, in t1: 0 = the uncut layer only (smooth cutting line, tool tip fixed); 0.25-20 = the block below it is meshed, its bottom slides horizontally, the tool tip is a rake contact node and material may pass under the tool", 0.0, 0.0, 20.0),
+        .add(param("workpiece_depth", Dim::dimensionless, "workpiece depth below the cutting line, in t1: 0 = the uncut layer only (smooth cutting line, tool tip fixed); 0.25-20 = the block below it is meshed, its bottom slides horizontally, the tool tip is a rake contact node and material may pass under the tool", 0.0, 0.0, 20.0),
              [](S& s, double v) { s.geometry.depth = v; })
         .add(param("exit_length", Dim::dimensionless, "machined surface meshed beyond the tool tip, in t1 (depth > 0)", 2.0, 0.5, 20.0),
              [](S& s, double v) { s.geometry.exit_length = v; })
@@ -393,7 +393,7 @@ CuttingRun cutting_run_from(const Values& given_in) {
   if (!(len > 0.0)) throw InputError("contact_length", "must be positive");
   c.contact_length = len / r.t1;
   if (c.depth > 0.0 && c.depth < 0.25)
-    throw InputError("depth", "must be 0 (the uncut layer only) or in [0.25, 20] t1 (the workpiece below the cutting line)");
+    throw InputError("workpiece_depth", "must be 0 (the uncut layer only) or in [0.25, 20] t1 (the workpiece below the cutting line)");
   const CuttingModes& m = r.modes;
   if (m.fit_eta && (m.search() || m.loop() || m.tangent()))
     throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = \"fixed\", steady_state = \"off\")");

@@ -130,13 +130,24 @@ BOOST_AUTO_TEST_CASE(serration_peak_counter) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(registered_cutting_runner) {
+// The registered sph_cutting runner and its default parameter values.
+struct RegisteredCutting {
   cutbench::SolverRegistry reg;
-  register_solvers(reg);
-  const auto* spec = reg.find("sph_cutting");
-  BOOST_REQUIRE(spec);
-  cutbench::Values v;
-  for (const auto& p : spec->params) v[p.name] = *p.default_value;
+  const cutbench::SolverSpec* spec = nullptr;
+  cutbench::Values defaults;
+  RegisteredCutting() {
+    register_solvers(reg);
+    spec = reg.find("sph_cutting");
+    BOOST_REQUIRE(spec);
+    for (const auto& p : spec->params) defaults[p.name] = *p.default_value;
+  }
+};
+
+BOOST_AUTO_TEST_CASE(registered_cutting_runner) {
+  RegisteredCutting rc;
+  const auto& reg = rc.reg;
+  const auto* spec = rc.spec;
+  cutbench::Values v = rc.defaults;
   v["particles_over_height"] = 7.0;
   v["length"] = 0.5e-3;
   v["cut_distance"] = 0.05e-3;
@@ -163,12 +174,9 @@ BOOST_AUTO_TEST_CASE(first_law_audit_closes_and_names_the_xsph_source) {
   // residual closes to well under 1 % of the tool's work. With the stabilisers (the authors'
   // defaults) the penalty gap follows the XSPH-drifted positions, which the booked term
   // xsph_contact_fraction must show as a source (< 0) and account for (FINDINGS F11).
-  cutbench::SolverRegistry reg;
-  register_solvers(reg);
-  const auto* spec = reg.find("sph_cutting");
-  BOOST_REQUIRE(spec);
-  cutbench::Values v;
-  for (const auto& p : spec->params) v[p.name] = *p.default_value;
+  RegisteredCutting rc;
+  const auto* spec = rc.spec;
+  cutbench::Values v = rc.defaults;
   v["particles_over_height"] = 9.0;
   v["length"] = 1e-3;
   v["cut_distance"] = 0.3e-3;

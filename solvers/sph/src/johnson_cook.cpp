@@ -16,13 +16,9 @@ double rate_factor(const JohnsonCook& jc, double rate) {
   const double r = rate / jc.eps_rate_ref;
   return r > 1.0 ? 1.0 + jc.C * std::log(r) : 1.0;
 }
-double strain_factor(const JohnsonCook& jc, double eps) {
-  return jc.A + jc.B * (eps > 0.0 ? std::pow(eps, jc.n) : 0.0);
-}
-
-// The strain-dependent part of the flow stress and its derivative in eps, softening included:
-// g = [A + B e^n exp(-e^a)] h(e, T), h = D + (1 - D) tanh(u)^s, u = (e + S)^-c; e_n = e^n and
-// e_n1 = e^(n-1) (floored by the caller).
+// The strain-dependent part of the flow stress and its derivative in eps: g = A + B e^n, or with
+// softening g = [A + B e^n exp(-e^a)] h(e, T), h = D + (1 - D) tanh(u)^s, u = (e + S)^-c;
+// e_n = e^n and e_n1 = e^(n-1) (floored by the caller).
 struct StrainPart {
   double g, dg;
 };
@@ -44,6 +40,7 @@ StrainPart strain_part(const JohnsonCook& jc, double e, double e_n, double e_n1,
   const double dh = th > 0.0 ? (1.0 - D) * jc.ss * (ths / th) * sech2 * (-jc.sc * u / base) : 0.0;
   return {g1 * h, dg1 * h + g1 * dh};
 }
+double e_pow_n(const JohnsonCook& jc, double e) { return e > 0.0 ? std::pow(e, jc.n) : 0.0; }
 }  // namespace
 
 JohnsonCook sima_ozel_ti6al4v() {
@@ -66,30 +63,20 @@ JohnsonCook sima_ozel_ti6al4v() {
 }
 
 double JohnsonCook::flow_stress(double eps_p, double eps_rate_p, double T) const {
-  if (softening) {
-    const double e_n = eps_p > 0.0 ? std::pow(eps_p, n) : 0.0;
-    return strain_part(*this, eps_p, e_n, 0.0, T).g * rate_factor(*this, eps_rate_p) * thermal_factor(*this, T);
-  }
-  return strain_factor(*this, eps_p) * rate_factor(*this, eps_rate_p) * thermal_factor(*this, T);
+  return strain_part(*this, eps_p, e_pow_n(*this, eps_p), 0.0, T).g * rate_factor(*this, eps_rate_p) *
+         thermal_factor(*this, T);
 }
 
 double JohnsonCook::d_strain(double eps_p, double eps_rate_p, double T) const {
   // n < 1: infinite slope at eps = 0; use a tiny floor so Newton stays finite.
   const double e = std::max(eps_p, 1e-12);
-  if (softening) {
-    const double e_n = std::pow(e, n);
-    return strain_part(*this, e, e_n, e_n / e, T).dg * rate_factor(*this, eps_rate_p) * thermal_factor(*this, T);
-  }
-  return B * n * std::pow(e, n - 1.0) * rate_factor(*this, eps_rate_p) * thermal_factor(*this, T);
+  return strain_part(*this, e, std::pow(e, n), std::pow(e, n - 1.0), T).dg * rate_factor(*this, eps_rate_p) *
+         thermal_factor(*this, T);
 }
 
 double JohnsonCook::d_rate(double eps_p, double eps_rate_p, double T) const {
   if (eps_rate_p <= eps_rate_ref) return 0.0;
-  if (softening) {
-    const double e_n = eps_p > 0.0 ? std::pow(eps_p, n) : 0.0;
-    return strain_part(*this, eps_p, e_n, 0.0, T).g * C / eps_rate_p * thermal_factor(*this, T);
-  }
-  return strain_factor(*this, eps_p) * C / eps_rate_p * thermal_factor(*this, T);
+  return strain_part(*this, eps_p, e_pow_n(*this, eps_p), 0.0, T).g * C / eps_rate_p * thermal_factor(*this, T);
 }
 
 double von_mises(const Stress3& s) { return std::sqrt(1.5 * (s.array() * s.array()).sum()); }
@@ -104,8 +91,7 @@ ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G
   // eps^(n-1) = eps^n / eps) and one log give sigma_y and both derivatives (same formulas as
   // flow_stress, d_strain and d_rate).
   const double tf = thermal_factor(jc, T);
-  const double y0 = (jc.softening ? strain_part(jc, eps_p, eps_p > 0.0 ? std::pow(eps_p, jc.n) : 0.0, 0.0, T).g
-                                  : strain_factor(jc, eps_p)) * tf;  // rate factor 1 at zero rate
+  const double y0 = strain_part(jc, eps_p, e_pow_n(jc, eps_p), 0.0, T).g * tf;  // rate factor 1 at zero rate
   res.flow_stress = y0;
   if (q <= y0) return res;
   res.plastic = true;
@@ -114,20 +100,14 @@ ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G
   };
   auto eval = [&](double d) {
     const double e = eps_p + d, rate = d / dt;
-    const double en = e > 0.0 ? std::pow(e, jc.n) : 0.0;
+    const double en = e_pow_n(jc, e);
     const double rr = rate / jc.eps_rate_ref;
     const double rf = rr > 1.0 ? 1.0 + jc.C * std::log(rr) : 1.0;
     const double e_min = 1e-12;
     const double en1 = e > e_min ? en / e : std::pow(e_min, jc.n - 1.0);
-    if (jc.softening) {
-      const StrainPart sp = strain_part(jc, e, en, en1, T);
-      const double dr = rate <= jc.eps_rate_ref ? 0.0 : sp.g * jc.C / rate * tf;
-      return Eval{sp.g * rf * tf, sp.dg * rf * tf + dr / dt};
-    }
-    const double sf = jc.A + jc.B * en;
-    const double ds = jc.B * jc.n * en1 * rf * tf;
-    const double dr = rate <= jc.eps_rate_ref ? 0.0 : sf * jc.C / rate * tf;
-    return Eval{sf * rf * tf, ds + dr / dt};
+    const StrainPart sp = strain_part(jc, e, en, en1, T);
+    const double dr = rate <= jc.eps_rate_ref ? 0.0 : sp.g * jc.C / rate * tf;
+    return Eval{sp.g * rf * tf, sp.dg * rf * tf + dr / dt};
   };
   // Bracket: residual(0) > 0, residual(q / 3G) <= 0 since sigma_y >= 0.
   double lo = 0.0, hi = q / (3.0 * G);

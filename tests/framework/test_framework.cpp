@@ -731,7 +731,10 @@ BOOST_AUTO_TEST_CASE(manifest_counts_the_full_tier_runs) {
   std::ifstream in(dir / "manifest.json");
   const json m = json::parse(in);
   bool seen = false;
+  int per_case_sum = 0;  // afrasiabi2021's runs counted once per case that uses them
   for (const auto& c : m.at("cases")) {
+    if (c.at("case").get<std::string>().rfind("afrasiabi2021/", 0) == 0 && c.contains("full_runs"))
+      per_case_sum += c.at("full_runs").at("total").get<int>();
     if (c.at("case") != "afrasiabi2021/fig06") continue;
     seen = true;
     BOOST_TEST(c.at("full_runs").at("total").get<int>() == 4);  // reference + enhanced at three mu
@@ -741,7 +744,7 @@ BOOST_AUTO_TEST_CASE(manifest_counts_the_full_tier_runs) {
   // fig05 and fig07 share fig06's mu = 0.35 runs: the paper counts distinct runs
   const auto& fr = m.at("full_runs").at("afrasiabi2021");
   BOOST_TEST(fr.at("total").get<int>() >= 4);
-  BOOST_TEST(fr.at("total").get<int>() < 20);
+  BOOST_TEST(fr.at("total").get<int>() < per_case_sum);
   fs::remove_all(dir);
 }
 

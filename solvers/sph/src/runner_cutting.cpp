@@ -395,6 +395,12 @@ Workpiece cutting_workpiece(const CuttingSetup& c) {
   w.fixed.assign(w.x.size(), 0);
   const double lim = (static_cast<double>(c.fixed_layers) - 0.5) * w.dx;
   for (std::size_t i = 0; i < w.x.size(); ++i) w.fixed[i] = w.x[i].y() < lim || w.x[i].x() < lim;
+  if (c.lattice_jitter > 0.0) {  // the clamped layers stay on the lattice
+    std::vector<Vec2> shifted = w.x;
+    jitter(shifted, c.lattice_jitter * w.dx, static_cast<std::uint64_t>(c.lattice_seed));
+    for (std::size_t i = 0; i < w.x.size(); ++i)
+      if (!w.fixed[i]) w.x[i] = shifted[i];
+  }
   return w;
 }
 
@@ -651,6 +657,8 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
                            {"sima_ozel", "Sima and Oezel (2010) Johnson-Cook with temperature-dependent strain softening, their Ti6Al4V constants (the law of the authors' ref. [20] for the Fig. 10 cut)"}},
                           "johnson_cook"),
              [](S& s, double v) { s.flow_law = static_cast<int>(v); })
+        .bind(param("lattice_jitter", Dim::dimensionless, "random displacement of the free particles of the initial lattice, as a fraction of dx (scatter studies; 0 = regular lattice)", def.lattice_jitter, 0.0, 0.25), &S::lattice_jitter)
+        .bind(integer_param("lattice_seed", "random seed of lattice_jitter", def.lattice_seed, 0.0, 4294967295.0), &S::lattice_seed)
         .bind(switch_param("shear_cap", "true: cap the friction stress at the chip's shear flow stress (Zorev); false: Coulomb only (paper)", false), &S::shear_cap);
     return p;
   }();

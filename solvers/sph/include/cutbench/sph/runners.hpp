@@ -52,6 +52,10 @@ struct CuttingSetup {
   // stress, XSPH
   double alpha_visc = 1.0, beta_visc = 1.0, artificial_stress = 0.3, xsph = 0.5;
   int flow_law = 0;  // 0: Johnson-Cook with the Table 1 constants; 1: Sima & Oezel (2010) softening law
+  // run-to-run scatter: the free particles of the initial lattice displaced by up to
+  // lattice_jitter dx in x and y (uniform, seeded); 0 = the regular lattice
+  double lattice_jitter = 0.0;
+  double lattice_seed = 1.0;  // a whole number up to 2^32 - 1
 };
 
 // The material, thermal and contact inputs run_cutting() builds from a setup (one place, so that

@@ -143,6 +143,40 @@ struct RegisteredCutting {
   }
 };
 
+// lattice_jitter (scatter studies) displaces the free particles by at most the given fraction of dx,
+// leaves the clamped layers on the lattice, and is reproducible for a seed.
+BOOST_AUTO_TEST_CASE(lattice_jitter_moves_free_particles_only) {
+  CuttingSetup c;
+  c.particles_over_height = 7;
+  c.length = 0.3e-3;
+  c.cut_distance = 2e-6;  // the tool does not reach the workpiece: the end state is the initial lattice
+  c.history_window = c.cut_distance / c.speed;
+  const auto regular = run_cutting(c);
+  c.lattice_jitter = 0.1;
+  const auto a = run_cutting(c);
+  const auto b = run_cutting(c);
+  c.lattice_seed = 2.0;
+  const auto other = run_cutting(c);
+  const double dx = regular.dx, lim = (c.fixed_layers - 0.5) * dx;
+  const auto& x0 = regular.snapshot.x;
+  const auto& y0 = regular.snapshot.y;
+  BOOST_REQUIRE(a.snapshot.x.size() == x0.size());
+  std::size_t moved = 0, free = 0, differs = 0;
+  for (std::size_t i = 0; i < x0.size(); ++i) {
+    const double ddx = std::abs(a.snapshot.x[i] - x0[i]), ddy = std::abs(a.snapshot.y[i] - y0[i]);
+    BOOST_TEST(std::max(ddx, ddy) <= 0.1 * dx * (1.0 + 1e-6));
+    BOOST_TEST(a.snapshot.x[i] == b.snapshot.x[i]);
+    BOOST_TEST(a.snapshot.y[i] == b.snapshot.y[i]);
+    const bool clamped = x0[i] < lim || y0[i] < lim;
+    if (clamped) BOOST_TEST(ddx + ddy == 0.0);
+    free += clamped ? 0 : 1;
+    moved += ddx + ddy > 0.0 ? 1 : 0;
+    differs += other.snapshot.x[i] != a.snapshot.x[i] ? 1 : 0;
+  }
+  BOOST_TEST(moved == free);
+  BOOST_TEST(differs > free / 2);
+}
+
 BOOST_AUTO_TEST_CASE(registered_cutting_runner) {
   RegisteredCutting rc;
   const auto& reg = rc.reg;

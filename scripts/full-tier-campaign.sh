@@ -18,14 +18,14 @@ compute() {  # a failed run is reported and the campaign goes on
 }
 case "$method" in
   sph)
-    # Cases that can be recorded soonest first. Figs 5 and 7 need the two mu = 0.35 runs that Fig 6
-    # shares (55-60 min each on two threads; 2.5 h on one with the code before the SIMD pair
-    # passes); then the cheap runs: Fig 8 (three 2121-particle runs, about 20 CPU-min each) and
-    # the coarse series of Figs 9 and 10 (about 15 CPU-min each); then the long ones: Fig 6 at
+    # Cases that can be recorded soonest first: Fig 8 (nine 2121-particle runs with the
+    # perturbed-lattice ensemble, 8-20 CPU-min each); Figs 2, 5 and 7, which need the two
+    # mu = 0.35 runs that Fig 6 shares (55-60 min each on two threads, about 2 h on one); the
+    # coarse series of Figs 9 and 10 (about 15 CPU-min each); then the long ones: Fig 6 at
     # mu = 0.5 and 0.65 and the fine series of Figs 9 and 10 (2-2.5 h each on one thread).
     compute --case afrasiabi2021/fig03 --case afrasiabi2021/table1
-    compute --case afrasiabi2021/fig05
     compute --case afrasiabi2021/fig08
+    compute --case afrasiabi2021/fig05
     compute --case afrasiabi2021/fig09 --series coarse
     compute --case afrasiabi2021/fig10 --series coarse
     compute --case afrasiabi2021/fig06

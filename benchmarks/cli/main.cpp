@@ -735,8 +735,8 @@ int cmd_bench(const std::string& name, const std::vector<std::string>& args, int
 int cmd_runs_plan(const std::string& dir, const std::vector<std::string>& ids, const std::string& paper,
                   const std::string& tier, bool as_json, bool compute, const std::vector<std::string>& only_series,
                   const std::vector<std::string>& only_runs, const cli::SlurmOptions& slurm, double checkpoint_minutes,
-                  bool skip_running) {
-  const std::vector<fs::path> files = select_case_files(ids, paper, false);
+                  bool skip_running, bool all_cases) {
+  const std::vector<fs::path> files = select_case_files(ids, paper, all_cases);
   if (compute && !slurm.dry_run) set_run_cache_dir(dir);  // creates it (an input error when it cannot be written)
   std::vector<std::string> case_ids;
   std::map<std::string, StoredRun> stored;
@@ -1055,7 +1055,7 @@ int main(int argc, char** argv) {
   std::string runs_paper, runs_tier = "full";
   runs->add_option("--case", runs_cases, "Plan: the solver runs of these cases and which DIR holds (repeatable)");
   runs->add_option("--paper", runs_paper, "Plan: the solver runs of every case of this paper");
-  runs->add_option("--tier", runs_tier, "Plan: tier of the cases (default full)");
+  runs->add_option("--tier", runs_tier, "Plan: tier of the cases (default full); without --case and --paper, every case of that tier");
   bool runs_compute = false;
   std::vector<std::string> runs_series;
   runs->add_flag("--compute", runs_compute,
@@ -1149,8 +1149,10 @@ int main(int argc, char** argv) {
     if (*records) return cmd_records(records_paper, records_refresh);
     if (*audit) return cmd_audit(audit_ids, audit_paper, audit_results, audit_json);
     if (*runs) {
-      if (runs_cases.empty() && runs_paper.empty()) {
-        if (runs_compute || !runs_series.empty()) throw InputError("--compute", "give the cases: --case C or --paper P");
+      // `--tier T` alone plans every case of that tier (the whole paper-resolution tier)
+      const bool all_cases = runs_cases.empty() && runs_paper.empty() && runs->get_option("--tier")->count() > 0;
+      if (runs_cases.empty() && runs_paper.empty() && !all_cases) {
+        if (runs_compute || !runs_series.empty()) throw InputError("--compute", "give the cases: --case C, --paper P or --tier T (every case)");
         return cmd_runs(runs_dir, runs_check, runs_json, runs_scalars, runs_upgrade);
       }
       if (runs_tier != "quick" && runs_tier != "full") throw InputError("--tier", "quick or full");
@@ -1172,7 +1174,7 @@ int main(int argc, char** argv) {
       }
       set_checkpoint_interval(60.0 * checkpoint_minutes);
       return cmd_runs_plan(runs_dir, runs_cases, runs_paper, runs_tier, runs_json, runs_compute, runs_series, runs_only,
-                           slurm, checkpoint_minutes, runs_skip_running);
+                           slurm, checkpoint_minutes, runs_skip_running, all_cases);
     }
   } catch (const InputError& e) {
     std::cerr << "cutbench: error: " << e.what() << "\n";

@@ -56,6 +56,13 @@ expect "checkpoint interval negative"    "--checkpoint-minutes" run aghababaei20
 expect_cmd "runs: no directory"         "runs"       runs /proc/cutbench-no-such-dir
 expect_cmd "runs --compute without cases" "--compute" runs /tmp --compute
 expect_cmd "runs: bad tier"            "--tier"     runs --case afrasiabi2021/fig06 --tier medium
+expect_cmd "runs: bad tier, every case" "--tier"    runs /tmp --tier medium --compute
+# `--tier full` alone plans every case of the tier: the dry-run array covers every paper's cases
+plan=$("$cutbench" runs "$root/reports/full_tier/runs" --tier full --compute --slurm --dry-run --partition p 2>&1); rc=$?
+if [[ $rc -ne 0 || "$plan" != *"--case 'afrasiabi2021/fig02'"* || "$plan" != *"--case 'nairn2015/fig17'"* ||
+      "$plan" != *"--case 'kahwash2018/table6'"* || "$plan" != *"#SBATCH --array=0-"* ]]; then
+  echo "FAIL runs --tier full: the dry run does not plan every case (exit $rc)"; fail=1
+else echo "ok   runs --tier full --compute --slurm --dry-run plans every case"; fi
 expect_cmd "runs --compute: unwritable" "--run-cache" runs /proc/cutbench-no-such-dir --case afrasiabi2021/fig03 --compute
 if [[ "$("$cutbench" bench efg_cutting completion_guard=1.4 2>&1 >/dev/null)" == *"unknown benchmark"* ]]; then
   echo "skip option not a whole number: the EFG solver is not in this build (CUTBENCH_SOLVERS=OFF)"

@@ -326,6 +326,7 @@ std::vector<OutputSpec> cutting_scalars() {
                  {"depth_used", Dim::length, "depth of cut used"},
                  {"rake_used", Dim::angle, "rake angle used"},
                  {"speed_used", Dim::velocity, "paper cutting speed (before time scaling)"},
+                 {"speed_run", Dim::velocity, "speed at which the tool moved (speed x time_scale)"},
                  {"wave_speed", Dim::velocity, "Eq 55 c_max = sqrt(C11/rho)"}};
 }
 
@@ -402,13 +403,22 @@ RunOutput cutting_output(const CuttingSetup& s, const CuttingResult& r, double w
                  {"depth_used", s.depth},
                  {"rake_used", s.rake},
                  {"speed_used", s.speed},
+                 {"speed_run", s.speed * s.time_scale},
                  {"wave_speed", m.wave_speed()}};
   out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"F_c_first_failure", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
-  out.notes.push_back("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
-                      "edge, constant friction, fixed bottom and far end and the time scaling are assumptions; "
-                      "mode-dependent degradation factors (Camanho & Matthews 1999, Tserpes et al. 2002; "
-                      "degradation = \"sudden\": to the residual); failed (fibre+matrix) Gauss points carry no stress, fully unsupported nodes are released; "
-                      "visibility across the notch and the cut line behind the edge (solvers/efg/README.md).");
+  // the failure model of this run, as its options set it
+  const char* degradation = s.degradation == Degradation::sudden ? "all moduli of failed material x the residual"
+                                                                 : "mode-dependent factors (Camanho & Matthews 1999, Tserpes et al. 2002)";
+  const char* growth = s.growth == DamageGrowth::proportional ? "scaled by 1 - d (1 - factor) as the failure index d grows"
+                                                              : "applied when a mode's index reaches 1";
+  const char* erosion = s.erosion == Erosion::none               ? "nothing is deleted"
+                        : s.erosion == Erosion::fibre_and_matrix ? "Gauss points failed in fibre and matrix carry no stress, unsupported nodes are released"
+                                                                 : "Gauss points failed in fibre or matrix carry no stress, unsupported nodes are released";
+  out.notes.push_back(std::string("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
+                                  "edge, constant friction, fixed bottom and far end and the time scaling (tool at ") +
+                      std::to_string(s.time_scale) + " x the given speed) are assumptions; degradation: " + degradation +
+                      ", " + growth + "; " + erosion +
+                      "; visibility across the notch and the cut line behind the edge (solvers/efg/README.md).");
   return out;
 }
 

@@ -1,6 +1,8 @@
 // Case runners of the EFG solver (verification problems), registered with the framework.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "cutbench/common/declared.hpp"
@@ -406,18 +408,21 @@ RunOutput cutting_output(const CuttingSetup& s, const CuttingResult& r, double w
                  {"speed_run", s.speed * s.time_scale},
                  {"wave_speed", m.wave_speed()}};
   out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"F_c_first_failure", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
-  // the failure model of this run, as its options set it
-  const char* degradation = s.degradation == Degradation::sudden ? "all moduli of failed material x the residual"
-                                                                 : "mode-dependent factors (Camanho & Matthews 1999, Tserpes et al. 2002)";
-  const char* growth = s.growth == DamageGrowth::proportional ? "scaled by 1 - d (1 - factor) as the failure index d grows"
-                                                              : "applied when a mode's index reaches 1";
-  const char* erosion = s.erosion == Erosion::none               ? "nothing is deleted"
-                        : s.erosion == Erosion::fibre_and_matrix ? "Gauss points failed in fibre and matrix carry no stress, unsupported nodes are released"
-                                                                 : "Gauss points failed in fibre or matrix carry no stress, unsupported nodes are released";
-  out.notes.push_back(std::string("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
-                                  "edge, constant friction, fixed bottom and far end and the time scaling (tool at ") +
-                      std::to_string(s.time_scale) + " x the given speed) are assumptions; degradation: " + degradation +
-                      ", " + growth + "; " + erosion +
+  // the failure model of this run: the declared descriptions of the options it ran with
+  const std::vector<ParamSpec> specs = cutting_params();
+  auto chosen = [&specs](const char* name, int index) {
+    const auto it = std::find_if(specs.begin(), specs.end(), [name](const ParamSpec& p) { return p.name == name; });
+    const ParamOption& o = it->options.at(static_cast<std::size_t>(index));
+    return it->name + " = " + o.name + ": " + o.description;
+  };
+  std::ostringstream scale;
+  scale << s.time_scale;
+  out.notes.push_back("efg_cutting: notched workpiece (cut starts inside it), workpiece size, clearance 7 deg, sharp "
+                      "edge, constant friction, fixed bottom and far end and the time scaling (tool at " +
+                      scale.str() + " x the given speed) are assumptions; " +
+                      chosen("degradation", static_cast<int>(s.degradation)) + "; " +
+                      chosen("damage_growth", static_cast<int>(s.growth)) + "; " +
+                      chosen("erosion", static_cast<int>(s.erosion)) +
                       "; visibility across the notch and the cut line behind the edge (solvers/efg/README.md).");
   return out;
 }

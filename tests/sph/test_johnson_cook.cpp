@@ -57,6 +57,34 @@ BOOST_AUTO_TEST_CASE(radial_return_recovers_manufactured_increment) {
   BOOST_TEST((el.deviator - 800e6 * dir).norm() == 0.0);
 }
 
+// A warm start near the root (the particle's increment of its last step) converges in a few
+// Newton steps: the bracket safeguard must not throw a converged iterate back across the bracket
+// (it did when the last correction landed on the bracket end d had just become: 8 iterations on
+// average in a cut, with a tail past 20). eps_p^n passed in gives the same return bit for bit.
+BOOST_AUTO_TEST_CASE(radial_return_warm_start_converges_in_few_steps) {
+  for (const JohnsonCook& jc : {JohnsonCook{}, sima_ozel_ti6al4v()}) {
+    const double G = 41.9e9, dt = 2e-10;
+    Stress3 dir;
+    dir << 1.0, 0.4, 0.0, 0.4, -0.3, 0.0, 0.0, 0.0, -0.7;
+    dir /= von_mises(dir);
+    for (double eps0 : {0.02, 0.5, 2.0})
+      for (double d_star : {1e-7, 1e-5, 1e-4})
+        for (double T : {300.0, 700.0, 1100.0})
+          for (double rel : {1e-3, 1e-2, -1e-2}) {
+            const double q = 3.0 * G * d_star + jc.flow_stress(eps0 + d_star, d_star / dt, T);
+            const auto r = radial_return(jc, q * dir, G, eps0, dt, T, d_star * (1.0 + rel));
+            BOOST_TEST(r.delta_eps_p == d_star, tt::tolerance(1e-9));
+            BOOST_TEST_INFO("eps0 " << eps0 << " d " << d_star << " T " << T << " rel " << rel << " softening " << jc.softening);
+            BOOST_TEST(r.iterations <= 6);
+            BOOST_TEST(r.eps_p_pow_n == jc.eps_pow_n(eps0 + r.delta_eps_p));
+            const auto c = radial_return(jc, q * dir, G, eps0, dt, T, d_star * (1.0 + rel), jc.eps_pow_n(eps0));
+            BOOST_TEST(c.delta_eps_p == r.delta_eps_p);
+            BOOST_TEST(c.flow_stress == r.flow_stress);
+            BOOST_TEST((c.deviator - r.deviator).norm() == 0.0);
+          }
+  }
+}
+
 // The solid skips the radial return when the von Mises stress is below A min(m, 1) (1 - T*), a
 // lower bound of the J-C flow stress (T*^m lies below its tangent at T* = 1 for m <= 1; the rate
 // factor is >= 1 and the strain factor >= A). Check the bound on a grid, for m < 1 and m > 1.

@@ -79,10 +79,12 @@ double JohnsonCook::d_rate(double eps_p, double eps_rate_p, double T) const {
   return strain_part(*this, eps_p, e_pow_n(*this, eps_p), 0.0, T).g * C / eps_rate_p * thermal_factor(*this, T);
 }
 
+double JohnsonCook::eps_pow_n(double eps_p) const { return e_pow_n(*this, eps_p); }
+
 double von_mises(const Stress3& s) { return std::sqrt(1.5 * (s.array() * s.array()).sum()); }
 
 ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G, double eps_p, double dt,
-                           double T, double guess) {
+                           double T, double guess, double eps_p_pow_n) {
   if (!(G > 0.0) || !(dt > 0.0)) throw InputError("radial_return", "G and dt must be positive");
   ReturnResult res;
   res.deviator = trial;
@@ -91,12 +93,14 @@ ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G
   // eps^(n-1) = eps^n / eps) and one log give sigma_y and both derivatives (same formulas as
   // flow_stress, d_strain and d_rate).
   const double tf = thermal_factor(jc, T);
-  const double y0 = strain_part(jc, eps_p, e_pow_n(jc, eps_p), 0.0, T).g * tf;  // rate factor 1 at zero rate
+  const double en0 = eps_p_pow_n >= 0.0 ? eps_p_pow_n : e_pow_n(jc, eps_p);
+  res.eps_p_pow_n = en0;
+  const double y0 = strain_part(jc, eps_p, en0, 0.0, T).g * tf;  // rate factor 1 at zero rate
   res.flow_stress = y0;
   if (q <= y0) return res;
   res.plastic = true;
   struct Eval {
-    double y, slope;  // sigma_y and d sigma_y / d(d) (strain and rate terms)
+    double y, slope, en;  // sigma_y, d sigma_y / d(d) (strain and rate terms), (eps_p + d)^n
   };
   auto eval = [&](double d) {
     const double e = eps_p + d, rate = d / dt;
@@ -107,28 +111,36 @@ ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial, double G
     const double en1 = e > e_min ? en / e : std::pow(e_min, jc.n - 1.0);
     const StrainPart sp = strain_part(jc, e, en, en1, T);
     const double dr = rate <= jc.eps_rate_ref ? 0.0 : sp.g * jc.C / rate * tf;
-    return Eval{sp.g * rf * tf, sp.dg * rf * tf + dr / dt};
+    return Eval{sp.g * rf * tf, sp.dg * rf * tf + dr / dt, en};
   };
   // Bracket: residual(0) > 0, residual(q / 3G) <= 0 since sigma_y >= 0.
-  double lo = 0.0, hi = q / (3.0 * G);
+  const double d_max = q / (3.0 * G);
+  double lo = 0.0, hi = d_max;
   // first iterate: the caller's guess inside the bracket, else the perfectly plastic increment
   double d = guess > 0.0 && guess < hi ? guess : std::min(hi, (q - y0) / (3.0 * G));
-  for (int it = 1; it <= 100; ++it) {
-    const Eval ev = eval(d);
+  Eval ev{};
+  bool done = false;
+  for (int it = 1; it <= 100 && !done; ++it) {
+    ev = eval(d);
     const double r = q - 3.0 * G * d - ev.y;
     res.iterations = it;
     if (r > 0.0) lo = d; else hi = d;
     const double slope = -3.0 * G - ev.slope;
-    double next = d - r / slope;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - d) <= 1e-14 * std::max(1e-12, next) || hi - lo <= 1e-15 * hi) {
-      d = next;
-      break;
-    }
-    d = next;
+    const double next = d - r / slope;
+    // Converged when the correction moves the returned stress by at most 2e-15 q (3 G |dd| <=
+    // 2e-15 q): the residual is then near its round-off floor, a few 1e-16 q, whatever the size of
+    // d (a tolerance relative to d cannot be met by small increments, which then ran on to the
+    // collapse of the bracket). Tested before the bracket safeguard: at convergence the correction
+    // can land on the bracket end d has just become, and a bisection there would throw the
+    // iterate back across the bracket.
+    done = std::abs(next - d) <= 2e-15 * d_max || hi - lo <= 1e-15 * hi;
+    if (!done) d = next > lo && next < hi ? next : 0.5 * (lo + hi);
   }
+  if (!done) ev = eval(d);  // the iteration limit: d is a new iterate
+  // at convergence d was evaluated last: its flow stress and eps^n need no further call
   res.delta_eps_p = d;
-  res.flow_stress = eval(d).y;
+  res.flow_stress = ev.y;
+  res.eps_p_pow_n = ev.en;
   res.deviator = trial * (1.0 - 3.0 * G * d / q);
   return res;
 }

@@ -197,6 +197,7 @@ void SolidSph::load_state(BinaryReader& r) {
   m_ = per_particle(r.pods<double>());
   rho_ = per_particle(r.pods<double>());
   eps_p_ = per_particle(r.pods<double>());
+  eps_pn_.clear();  // recomputed from eps_p_ by the next step
   T_ = per_particle(r.pods<double>());
   S_ = per_particle(r.pods<Stress3>());
   last_dep_ = r.pods<double>();
@@ -542,6 +543,10 @@ void SolidSph::step(double dt) {
     }
   };
   if (last_dep_.size() != n) last_dep_.assign(n, 0.0);
+  if (eps_pn_.size() != n) {  // after construction or a restart: the same pow radial_return takes
+    eps_pn_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) eps_pn_[i] = mat_.jc.eps_pow_n(eps_p_[i]);
+  }
   const RateAcc zero{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   racc_.resize(n);
   xsph_.resize(n);
@@ -613,9 +618,10 @@ void SolidSph::step(double dt) {
                                         2.0 * s(0, 1) * s(0, 1)));
       if (q > yield_floor(T_[i])) {
         // warm start from the particle's increment of its last plastic step
-        const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i], last_dep_[i]);
+        const auto rr = radial_return(mat_.jc, s, G, eps_p_[i], dt, T_[i], last_dep_[i], eps_pn_[i]);
         s = rr.deviator;
         eps_p_[i] += rr.delta_eps_p;
+        eps_pn_[i] = rr.eps_p_pow_n;  // (eps_p + d)^n with eps_p + d the value just stored
         last_dep_[i] = rr.delta_eps_p;
         plastic_dT[i] = chi_rc * rr.flow_stress * rr.delta_eps_p;
         work_plastic[i] = m_[i] / rho_[i] * rr.flow_stress * rr.delta_eps_p;

@@ -26,6 +26,8 @@ struct JohnsonCook {
   // d sigma_y / d eps_p at fixed rate, and d sigma_y / d (eps rate) at fixed strain.
   double d_strain(double eps_p, double eps_rate_p, double T) const;
   double d_rate(double eps_p, double eps_rate_p, double T) const;
+  // eps_p^n (0 for eps_p <= 0), as radial_return computes and returns it
+  double eps_pow_n(double eps_p) const;
 };
 
 // The Sima & Oezel (2010) Ti6Al4V constants (A 724.7 MPa, B 683.1 MPa, C 0.035, m 1, n 0.47,
@@ -39,6 +41,7 @@ struct ReturnResult {
   Stress3 deviator;            // returned deviatoric stress
   double delta_eps_p = 0.0;    // equivalent plastic strain increment
   double flow_stress = 0.0;    // sigma_y at the end of the step (or at the start if elastic)
+  double eps_p_pow_n = 0.0;    // eps_p^n at the end of the step (0 for eps_p = 0), for the next call
   int iterations = 0;
   bool plastic = false;
 };
@@ -49,8 +52,9 @@ struct ReturnResult {
 // by safeguarded Newton (bisection fallback), and scale the deviator by (1 - 3 G d / q_trial).
 // `guess` (optional, > 0): first Newton iterate, e.g. the particle's increment of the previous
 // step (clipped to the bracket); the root and the tolerance are the same, only the path differs.
+// `eps_p_pow_n` (optional, >= 0): eps_p^n as an earlier call returned it (saves one pow per call).
 ReturnResult radial_return(const JohnsonCook& jc, const Stress3& trial_deviator, double G, double eps_p,
-                           double dt, double T, double guess = 0.0);
+                           double dt, double T, double guess = 0.0, double eps_p_pow_n = -1.0);
 
 double von_mises(const Stress3& deviator);
 

@@ -153,6 +153,7 @@ public:
 private:
   std::vector<Vec2> x_, v_, a_;
   std::vector<double> m_, rho_, eps_p_, T_;
+  std::vector<double> eps_pn_;  // eps_p^n per particle (radial_return's, kept for its next call; not checkpointed)
   std::vector<Stress3> S_;
   std::vector<char> fixed_;
   SolidMaterial mat_;

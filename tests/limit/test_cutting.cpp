@@ -254,6 +254,60 @@ BOOST_AUTO_TEST_CASE(turned_free_chip_mass_balance) {
   BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
 }
 
+BOOST_AUTO_TEST_CASE(chip_back_stream_angle_eta1) {
+  // η1 (paper Fig. 5): the chip back over the contact runs from S to D1 = S + l (r − tan η1 n_r).
+  // (1) The fluxes still add up to the inflow (the back over the contact, the turned free chip and
+  // the chip end, now parallel to C–D1, are classified), and the back over the contact is
+  // l / cos η1 long. (2) Frictionless, α = 0, φ = 45°, l = t1 the straight chip is the exact steady
+  // state: a back turned away from the tool (η1 > 0) takes material in, one turned toward it gives
+  // material out (measured at n = 6: flux over the back −0.152 / +0.144 at η1 = ±0.15), and the
+  // fit of both stream angles returns from (0.15, 0.1) to the straight chip.
+  for (const auto& [eta1, eta2] : {std::pair{0.2, -0.3}, std::pair{-0.1, 0.2}}) {
+    CuttingSetup c;
+    c.n = 4;
+    c.contact_length = 1.0;
+    c.mu = 0.5;
+    c.alpha = 6.0 * M_PI / 180;
+    c.phi = merchant_shear_angle(c.alpha, c.mu);
+    c.eta1 = eta1;
+    c.eta2 = eta2;
+    const auto r = solve_cutting(c);
+    const double total = r.flux_top + r.flux_back + r.flux_end + r.flux_rake_free;
+    BOOST_TEST_MESSAGE("eta1=" << eta1 << " eta2=" << eta2 << " fluxes top " << r.flux_top << " back " << r.flux_back
+                                << " (contact " << r.flux_back_contact << ") end " << r.flux_end << " rake " << r.flux_rake_free);
+    BOOST_TEST(std::abs(total - 1.0) < 1e-6);
+    BOOST_TEST(r.flux_end > 0.5);
+    BOOST_TEST(std::abs(r.back_contact_length - c.contact_length / std::cos(eta1)) < 1e-12);
+  }
+  CuttingSetup c;
+  c.n = 6;
+  c.phi = M_PI / 4;
+  c.contact_length = 1.0;
+  c.eta1 = 0.15;
+  const auto in = solve_cutting(c);
+  c.eta1 = -0.15;
+  const auto out = solve_cutting(c);
+  BOOST_TEST(in.flux_back_contact < -0.1);
+  BOOST_TEST(out.flux_back_contact > 0.1);
+  c.eta1 = 0.15;
+  c.eta2 = 0.1;
+  const auto fit = fit_stream_angles(c, true, [](const CuttingSetup& cs) { return solve_cutting(cs); });
+  for (std::size_t i = 0; i < fit.eta1.size(); ++i)
+    BOOST_TEST_MESSAGE("fit " << i << ": eta1 " << fit.eta1[i] << " back angle " << fit.back_angle[i] << " eta2 " << fit.eta2[i]
+                              << " exit angle " << fit.exit_angle[i]);
+  BOOST_TEST(fit.converged);
+  BOOST_TEST(std::abs(fit.eta1.back()) < 0.01);
+  BOOST_TEST(std::abs(fit.eta2.back()) < 0.01);
+  // a back thinner than 0.1 t2 at l and a held chip back are refused
+  CuttingSetup bad;
+  bad.eta1 = -0.7;
+  bad.contact_length = 3.0;
+  BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
+  bad.eta1 = 0.1;
+  bad.streamline = 2;
+  BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
+}
+
 BOOST_AUTO_TEST_CASE(workpiece_block_frictionless_converges_to_merchant) {
   // The paper's domain: the workpiece below the cutting line is meshed and the tool tip is a rake
   // contact node. Frictionless, alpha = 0, phi = 45 deg, l = t1: the single-shear-plane mechanism

@@ -115,18 +115,23 @@ LimitModel cutting_model(const CuttingSetup& c) {
   const double lb = c.contact_length / Lc;
   const auto xc = piecewise_grid({0.0, lb, 1.0}, {uniform_grid(nc1), graded_grid(nc2, 1.1, 0.0)});
   const Mesh work = structured_quad({-Lw, 0.0}, O, S, {-Lw, t1}, xw, eta, Pattern::union_jack);
-  if (c.eta2 == 0.0) {
+  if (c.eta2 == 0.0 && c.eta1 == 0.0) {
     const Mesh chip = structured_quad(O, O + Lc * r, S + Lc * r, S, xc, eta, Pattern::union_jack);
     return cutting_model_on_mesh(with_block(merge(work, chip, 1e-9 * t1), c, Lw, xw), c);
   }
   if (!(std::abs(c.eta2) < 0.25 * M_PI)) throw InputError("eta2", "stream angle must be in (-45, 45) deg");
-  // contact part O, C = l r, D = S + l r, S; free part turned by η2 about the line C–D
+  if (!(std::abs(c.eta1) < 0.25 * M_PI)) throw InputError("eta1", "stream angle must be in (-45, 45) deg");
+  const double l = c.contact_length, Lf = Lc - l;
+  if (!(t2 + l * std::tan(c.eta1) > 0.1 * t2))
+    throw InputError("eta1", "the chip back over the contact must leave a thickness of at least 0.1 t2 at its end: eta1 > atan(-0.9 t2 / l)");
+  if (c.eta1 != 0.0 && c.streamline >= 2)
+    throw InputError("eta1", "a chip back at eta1 is free: streamline \"none\" or \"top\"");
+  // contact part O, C = l r, D1, S (D1 = S + l r when η1 = 0); free part turned by η2 about C–D1
   const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));
   const Vector2d r2 = std::cos(c.eta2) * r - std::sin(c.eta2) * nr;
-  const double l = c.contact_length, Lf = Lc - l;
-  const Vector2d C = l * r, D = S + l * r;
-  const Mesh chip1 = structured_quad(O, C, D, S, uniform_grid(nc1), eta, Pattern::union_jack);
-  const Mesh chip2 = structured_quad(C, C + Lf * r2, D + Lf * r2, D, graded_grid(nc2, 1.1, 0.0), eta, Pattern::union_jack);
+  const Vector2d C = l * r, D1 = S + l * (r - std::tan(c.eta1) * nr);
+  const Mesh chip1 = structured_quad(O, C, D1, S, uniform_grid(nc1), eta, Pattern::union_jack);
+  const Mesh chip2 = structured_quad(C, C + Lf * r2, D1 + Lf * r2, D1, graded_grid(nc2, 1.1, 0.0), eta, Pattern::union_jack);
   return cutting_model_on_mesh(with_block(merge(merge(work, chip1, 1e-9 * t1), chip2, 1e-9 * t1), c, Lw, xw), c);
 }
 
@@ -282,11 +287,20 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     const auto& mesh = res.model.mesh;
     const Vector2d nr(std::cos(c.alpha), -std::sin(c.alpha));
     const Vector2d S(-c.t1 / std::tan(c.phi), c.t1);
-    const Vector2d ns(std::sin(c.phi), std::cos(c.phi));
     const double tol = 1e-6 * c.t1;
-    // the free chip beyond l (turned by η2): direction r2, normal nr2 (toward the tool side)
+    // the chip back over the contact, S to D1 (direction r1, normal n1 out of the chip), and the
+    // free chip beyond l turned by η2 (direction r2, normal nr2 toward the tool side) from C–D1
+    const double l = c.contact_length;
+    const Vector2d r1 = std::cos(c.eta1) * r - std::sin(c.eta1) * nr, n1 = std::cos(c.eta1) * nr + std::sin(c.eta1) * r;
     const Vector2d r2 = std::cos(c.eta2) * r - std::sin(c.eta2) * nr, nr2 = std::cos(c.eta2) * nr + std::sin(c.eta2) * r;
-    const Vector2d C = c.contact_length * r, D = S + c.contact_length * r;
+    const Vector2d C = l * r, D1 = S + l * (r - std::tan(c.eta1) * nr);
+    const double back1 = (D1 - S).norm();
+    res.back_contact_length = back1;
+    const bool turned = c.eta1 != 0.0 || c.eta2 != 0.0;
+    // the chip end: parallel to C–D1 (to OS when η1 = 0), its normal along the free chip
+    Vector2d n_end(-(D1 - C).y(), (D1 - C).x());
+    n_end.normalize();
+    if (n_end.dot(r2) < 0.0) n_end = -n_end;
     Vector2d v_end(0.0, 0.0);  // ∫ v ds over the chip end (Simpson)
     for (const auto& e : boundary_edges(mesh)) {
       const Vector2d n = boundary_normal(mesh, e);
@@ -294,13 +308,17 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
       const double L = (mesh.nodes[static_cast<std::size_t>(e.b)] - mesh.nodes[static_cast<std::size_t>(e.a)]).norm();
       auto vn = [&](int nd) { return sol.velocity[2 * nd] * n.x() + sol.velocity[2 * nd + 1] * n.y(); };
       const double f = L * (vn(e.a) + 4.0 * vn(e.m) + vn(e.b)) / 6.0;
+      const double a1 = (xm - S).dot(r1);
       if (c.depth > 0.0 && ((std::abs(xm.y()) < tol && xm.x() > 0.0) || (std::abs(xm.x() - c.exit_length * c.t1) < tol && xm.y() < 0.0)))
         res.flux_under += f;  // machined surface and the block's exit
       else if (std::abs(xm.y() - c.t1) < tol && xm.x() < S.x()) res.flux_top += f;
-      else if (std::abs(xm.dot(nr) - S.dot(nr)) < tol && (c.eta2 == 0.0 || (xm - D).dot(r) < 0.0)) res.flux_back += f;
-      else if (c.eta2 != 0.0 && std::abs((xm - D).dot(nr2)) < tol && (xm - D).dot(r2) > 0.0) res.flux_back += f;
-      else if (c.eta2 != 0.0 && std::abs((xm - C).dot(nr2)) < tol && (xm - C).dot(r2) > 0.0) res.flux_rake_free += f;
-      else if (std::abs(n.dot(ns) - 1.0) < 1e-9 && xm.dot(r) > c.contact_length) {  // end ∥ OS
+      else if (std::abs((xm - S).dot(n1)) < tol && a1 > 0.0 && (!turned || a1 < back1)) {
+        res.flux_back += f;  // the chip back (over the contact; the whole straight back when not turned)
+        if (a1 < back1) res.flux_back_contact += f;
+      }
+      else if (turned && std::abs((xm - D1).dot(nr2)) < tol && (xm - D1).dot(r2) > 0.0) res.flux_back += f;
+      else if (turned && std::abs((xm - C).dot(nr2)) < tol && (xm - C).dot(r2) > 0.0) res.flux_rake_free += f;
+      else if (std::abs(n.dot(n_end) - 1.0) < 1e-9 && xm.dot(r) > l) {  // the chip end
         res.flux_end += f;
         auto v = [&](int nd) { return Vector2d(sol.velocity[2 * nd], sol.velocity[2 * nd + 1]); };
         v_end += L * (v(e.a) + 4.0 * v(e.m) + v(e.b)) / 6.0;

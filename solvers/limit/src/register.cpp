@@ -296,7 +296,7 @@ struct CuttingModes {
   int search_mode = 0;  // contact_search: 0 fixed, 1 grow, 2 separation
   int loop_mode = 0;    // steady_state: 0 off, 1 turning_point, 2 tangent_exit
   int adapt_steps = 0;
-  bool fit_eta = false, anisotropic = false;
+  bool fit_eta = false, fit_eta1 = false, anisotropic = false;
   bool search() const { return search_mode > 0; }
   bool loop() const { return loop_mode == 1; }
   bool tangent() const { return loop_mode == 2; }
@@ -364,8 +364,12 @@ const DeclaredParams<CuttingRun>& cutting_declaration() {
              [](S& s, double v) { s.geometry.depth = v; })
         .add(param("exit_length", Dim::dimensionless, "machined surface meshed beyond the tool tip, in t1 (depth > 0)", 2.0, 0.5, 20.0),
              [](S& s, double v) { s.geometry.exit_length = v; })
-        .add(switch_param("fit_eta2", "fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", false),
+        .add(switch_param("fit_eta2", "fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + 0.7 exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", false),
              [](S& s, double v) { s.modes.fit_eta = v != 0.0; })
+        .add(param("eta1", Dim::angle, "stream angle of the chip back over the contact (Fig. 5): the back from S turned by eta1 away from the tool (> 0: the chip thickens along the contact); needs the chip back free (streamline none or top)", 0.0, -0.7, 0.7),
+             [](S& s, double v) { s.geometry.eta1 = v; })
+        .add(switch_param("fit_eta1", "with fit_eta2: fit eta1 too, so that no material crosses the chip back over the contact (eta1 <- eta1 + 0.7 mean crossing angle, at most 10 solves)", false),
+             [](S& s, double v) { s.modes.fit_eta1 = v != 0.0; })
         .add(p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%) from the structured mesh; at a fixed geometry, or at every phi of the steady_state = 2 loop (with contact_search: l(phi) from the uniform mesh, then the refined permanent contact over l)", 0, 0, 10),
              [](S& s, double v) { s.modes.adapt_steps = static_cast<int>(v); })
         .add(option_param("refine", "kind of the adaptive refinement",
@@ -395,6 +399,10 @@ CuttingRun cutting_run_from(const Values& given_in) {
   if (c.depth > 0.0 && c.depth < 0.25)
     throw InputError("workpiece_depth", "must be 0 (the uncut layer only) or in [0.25, 20] t1 (the workpiece below the cutting line)");
   const CuttingModes& m = r.modes;
+  if (m.fit_eta1 && !m.fit_eta)
+    throw InputError("fit_eta1", "the eta1 fit runs with the eta2 fit (fit_eta2 = true)");
+  if ((c.eta1 != 0.0 || m.fit_eta1) && c.streamline >= 2)
+    throw InputError("eta1", "a chip back at eta1 is free: streamline \"none\" or \"top\"");
   if (m.fit_eta && (m.search() || m.loop() || m.tangent()))
     throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = \"fixed\", steady_state = \"off\")");
   if (m.adapt_steps > 0 && (m.loop() || (m.search() && !m.tangent())))
@@ -455,6 +463,7 @@ private:
 struct SteadyState {
   CuttingResult r;
   std::vector<double> phi, phi_star, fc, l, elements, eta;  // per iteration (eta2 fit: exit angles in phi)
+  std::vector<double> eta1, back_angle;                      // eta1 fit: per iteration
   bool tangent_converged = true, tangent_at_merchant = false;
   std::vector<std::string> notes;
 };
@@ -508,12 +517,13 @@ private:
     const CuttingSetup in = cs;
     CuttingResult computed;
     const int before = solves_.count;
-    const std::vector<double>& rec = evaluate({cs.phi, cs.contact_length, cs.eta2}, [&] {
+    const std::vector<double>& rec = evaluate({cs.phi, cs.contact_length, cs.eta2, cs.eta1}, [&] {
       computed = configure(cs);
       const double ps = run_.modes.loop() ? measured_shear_angle(cs, computed) : nan_value();
       return std::vector<double>{computed.fc_bar, computed.chip_exit_angle,
                                  static_cast<double>(computed.model.mesh.num_elements()), cs.contact_length, ps,
-                                 static_cast<double>(solves_.count - before)};
+                                 static_cast<double>(solves_.count - before), computed.flux_back_contact,
+                                 computed.back_contact_length, computed.v_chip};
     });
     const int e = static_cast<int>(evaluation_index());
     inputs_[e] = in;
@@ -528,6 +538,9 @@ private:
     CuttingResult summary;
     summary.fc_bar = rec[0];
     summary.chip_exit_angle = rec[1];
+    summary.flux_back_contact = rec[6];
+    summary.back_contact_length = rec[7];
+    summary.v_chip = rec[8];
     summary.recorded_evaluation = e;
     return summary;
   }
@@ -568,11 +581,18 @@ private:
       st.fc = std::move(res.fc_bar);
       st.r = std::move(res.final);
     } else if (m.fit_eta) {
-      auto fit = fit_eta2(c, [&](CuttingSetup cs) { return evaluated(cs); });
+      const int max_iter = m.fit_eta1 ? 10 : 6;
+      auto fit = fit_stream_angles(c, m.fit_eta1, [&](CuttingSetup cs) { return evaluated(cs); }, max_iter);
       st.eta = fit.eta2;
       st.phi = fit.exit_angle;  // the fit history
+      st.eta1 = fit.eta1;
+      st.back_angle = fit.back_angle;
       c.eta2 = fit.eta2.back();
-      if (!fit.converged) st.notes.push_back("eta2 fit not converged after 6 solves (last exit angle " + std::to_string(fit.exit_angle.back()) + " rad)");
+      c.eta1 = fit.eta1.back();
+      if (!fit.converged)
+        st.notes.push_back(std::string(m.fit_eta1 ? "eta1/eta2" : "eta2") + " fit not converged after " + std::to_string(max_iter) +
+                           " solves (last exit angle " + std::to_string(fit.exit_angle.back()) + " rad, back crossing angle " +
+                           std::to_string(fit.back_angle.back()) + " rad)");
       st.r = std::move(fit.final);
     } else {
       st.r = evaluated(c);
@@ -664,12 +684,16 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
   put("streamline_force", r.streamline_force, "1");
   put("eta2", r.chip_exit_angle, "rad");
   put("eta2_geometry", c.eta2, "rad");
+  put("eta1_geometry", c.eta1, "rad");
+  put("flux_back_contact", r.flux_back_contact, "1");
   for (const auto& nt : st.notes) out.notes.push_back(nt);
   if (m.fit_eta) {
     Table hist;
     hist.name = "eta2_fit";
     hist.add("eta2", "rad", st.eta);
     hist.add("exit_angle", "rad", st.phi);
+    hist.add("eta1", "rad", st.eta1);
+    hist.add("back_angle", "rad", st.back_angle);
     out.tables.push_back(std::move(hist));
   }
   put("solves", solves, "1");
@@ -760,8 +784,10 @@ SolverSpec cutting_spec() {
                 {"l_over_t1", "1", "contact length / t1"},
                 {"elements", "1", "elements of the mesh"}}},
               {"eta2_fit",
-               "iterations of the eta2 fit",
-               {{"eta2", "rad", "stream angle of the chip geometry"}, {"exit_angle", "rad", "chip-end exit angle"}}}};
+               "iterations of the stream-angle fit (eta2, with fit_eta1 also eta1)",
+               {{"eta2", "rad", "stream angle of the chip geometry beyond the contact"}, {"exit_angle", "rad", "chip-end exit angle"},
+                {"eta1", "rad", "stream angle of the chip back over the contact"},
+                {"back_angle", "rad", "mean angle at which material leaves through the chip back over the contact (flux / (length x chip speed))"}}}};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
                {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
                {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},
@@ -783,6 +809,8 @@ SolverSpec cutting_spec() {
                {"streamline_force", Dim::dimensionless, "sum |normal reaction| on the streamline surfaces / (k t1 w)"},
                {"eta2", Dim::angle, "direction of the chip end velocity relative to the chip beyond the contact (mean velocity over the chip end; > 0 away from the tool)"},
                {"eta2_geometry", Dim::angle, "stream angle eta2 of the chip geometry beyond the contact (given or fitted)"},
+               {"eta1_geometry", Dim::angle, "stream angle eta1 of the chip back over the contact (given or fitted)"},
+               {"flux_back_contact", Dim::dimensionless, "part of flux_back through the chip back over the contact (S to the point above the contact end) / (v t1)"},
                {"max_sigma_eq_over_k", Dim::dimensionless, "max sqrt(J2)/k over all stress points"},
                {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},
                {"solves", Dim::dimensionless, "limit-analysis problems solved (Coulomb steps excluded)"},

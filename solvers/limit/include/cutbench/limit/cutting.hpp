@@ -51,6 +51,13 @@ struct CuttingSetup {
   // chip (Eq. 2). The chip back beyond l is then not a streamline surface (streamline ≥ 2 holds
   // the straight part only).
   double eta2 = 0.0;
+  // stream angle η1 of Fig. 5: the chip back over the contact (from S to D1, above the contact end
+  // C = l r) runs along r1 = cos η1 r − sin η1 n_r instead of parallel to the rake face, so the
+  // chip thickens (> 0) or thins (< 0) along the contact: D1 = S + l (r − tan η1 n_r), the
+  // thickness at l is t2 + l tan η1 (must stay positive). The free chip beyond l (turned by η2)
+  // starts from the line C–D1. 0: the back parallel to the rake face (Eq. 2). Needs streamline ≤ 1
+  // (the chip back free).
+  double eta1 = 0.0;
   // Workpiece below the cutting line, depth in t1. 0: only the uncut layer is meshed, the cutting
   // line y = 0 is a smooth rigid plane and the tool tip is fixed (stagnation imposed at the tip).
   // > 0: the block −depth·t1 ≤ y ≤ 0 enters with the layer at v = (1, 0), its bottom moves
@@ -86,6 +93,9 @@ struct CuttingResult {
   // volume fluxes (per unit width, unit inflow speed → t1 in total) leaving through the uncut
   // top surface, the chip back and the chip end; steady state needs top = back = 0
   double flux_top = 0.0, flux_back = 0.0, flux_end = 0.0;
+  // the part of flux_back through the chip back over the contact (S to D1; the rest leaves beyond l)
+  double flux_back_contact = 0.0;
+  double back_contact_length = 0.0;  // |D1 − S|
   // through the rake-face line (outward from the chip, i.e. > 0 into the tool): the free part
   // beyond l (> 0: the chip would cross the rake face, < 0: it lifts off / curls away)
   // and, with the unilateral contact, the separating nodes (v·n = −z < 0: the chip lifts off)
@@ -138,28 +148,43 @@ SteadyStateResult steady_state(CuttingSetup setup, const SteadyStateOptions& opt
 
 // Mean normal contact stress over the last `fraction` of the contact length (σ_n/k, < 0 in
 // compression), from the lumped profile of a solved case.
-// Fit of η2 (restricted tool): η2 ← η2 + 0.7 chip_exit_angle (clamped to ±40°) until |Δη2| < tol (the chip end then
-// moves along the turned chip, so the free chip is a streamline contour). Returns the last solve.
-struct Eta2FitResult {
-  std::vector<double> eta2, exit_angle;
+// Fit of the stream angles of Fig. 5 ("both angles are determined so that the velocity vectors are
+// tangent to the chip geometry contour"), at fixed φ and l, by under-relaxed updates until both
+// change by less than tol:
+//  - η2 ← η2 + 0.7 chip_exit_angle (the chip end then moves along the turned free chip);
+//  - with fit_eta1, η1 ← η1 + 0.7 a1, a1 = flux_back_contact / (|D1 − S| v_chip) the mean angle
+//    at which material crosses the chip back over the contact (> 0: it leaves, so the back turns
+//    away from the tool and the chip thickens along the contact);
+// both kept inside ±40° (η1 also above the bound of cutting_model). Returns the last solve.
+struct StreamFitResult {
+  std::vector<double> eta1, eta2, back_angle, exit_angle;  // per solve
   bool converged = false;
   CuttingResult final;
 };
 template <class SolveFn>
-Eta2FitResult fit_eta2(CuttingSetup c, SolveFn&& solve, int max_iter = 6, double tol = 0.25 * 3.14159265358979323846 / 180.0) {
-  Eta2FitResult out;
+StreamFitResult fit_stream_angles(CuttingSetup c, bool fit_eta1, SolveFn&& solve, int max_iter = 6,
+                                  double tol = 0.25 * 3.14159265358979323846 / 180.0) {
+  constexpr double kMax = 40.0 * 3.14159265358979323846 / 180.0;
+  StreamFitResult out;
   for (int it = 0; it < max_iter; ++it) {
     CuttingResult r = solve(c);
+    const double a1 = r.back_contact_length > 0.0 ? r.flux_back_contact / (r.back_contact_length * r.v_chip) : 0.0;
+    out.eta1.push_back(c.eta1);
     out.eta2.push_back(c.eta2);
+    out.back_angle.push_back(a1);
     out.exit_angle.push_back(r.chip_exit_angle);
-    const double d = r.chip_exit_angle;
+    const double d2 = 0.7 * r.chip_exit_angle, d1 = fit_eta1 ? 0.7 * a1 : 0.0;
     out.final = std::move(r);
-    if (std::abs(d) < tol) {
+    if (std::abs(d2) < tol && std::abs(d1) < tol) {
       out.converged = true;
       break;
     }
-    // under-relaxed (the exit angle overshoots for μ ≥ 1) and kept inside ±40°
-    c.eta2 = std::clamp(c.eta2 + 0.7 * d, -40.0 * 3.14159265358979323846 / 180.0, 40.0 * 3.14159265358979323846 / 180.0);
+    // under-relaxed (the exit angle overshoots for μ ≥ 1) and kept inside the bounds
+    c.eta2 = std::clamp(c.eta2 + d2, -kMax, kMax);
+    if (fit_eta1) {
+      const double lo = std::atan(-0.8 * chip_thickness(c.t1, c.phi, c.alpha) / c.contact_length);
+      c.eta1 = std::clamp(c.eta1 + d1, std::max(-kMax, lo), kMax);
+    }
   }
   return out;
 }

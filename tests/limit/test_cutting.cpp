@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "cutbench/common/errors.hpp"
 #include "cutbench/limit/cutting.hpp"
@@ -252,6 +253,34 @@ BOOST_AUTO_TEST_CASE(turned_free_chip_mass_balance) {
   CuttingSetup bad;
   bad.eta2 = 1.0;
   BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
+}
+
+BOOST_AUTO_TEST_CASE(stick_length_interpolates_the_threshold_crossing) {
+  // A synthetic profile: slip 0 at the tip, 0.5e-3 at s = 0.2, 3e-3 at s = 0.4, 1 beyond; threshold
+  // 1e-3 (v_chip = 1). Nodes with |w_t| < 1e-3: the first two, so the node count gives their
+  // tributary share; the stick zone from the tip ends where the linear interpolation crosses 1e-3,
+  // s = 0.2 + 0.2 (0.5e-3 / 2.5e-3) = 0.24 of the contact length 1.
+  CuttingResult r;
+  r.s = {0.0, 0.2, 0.4, 0.6, 0.8, 1.0};
+  r.slip = {0.0, 0.5e-3, 3e-3, 1.0, 1.0, 1.0};
+  r.sigma_n = std::vector<double>(6, -1.0);
+  r.tau = std::vector<double>(6, 0.5);
+  r.trib = {0.1, 0.2, 0.2, 0.2, 0.2, 0.1};
+  r.v_chip = 1.0;
+  r.stick_tol = 1e-3;
+  contact_statistics(r, std::numeric_limits<double>::infinity());
+  BOOST_TEST(std::abs(r.stick_fraction - 0.3) < 1e-12);
+  BOOST_TEST(std::abs(r.stick_length_fraction - 0.24) < 1e-12);
+  // truncated at l_max = 0.8: the same crossing over the shorter contact
+  contact_statistics(r, 0.8);
+  BOOST_TEST(std::abs(r.stick_length_fraction - 0.3) < 1e-12);
+  // no crossing: the whole contact sticks; slipping at the tip: none
+  r.slip = std::vector<double>(6, 0.0);
+  contact_statistics(r, std::numeric_limits<double>::infinity());
+  BOOST_TEST(r.stick_length_fraction == 1.0);
+  r.slip = std::vector<double>(6, 0.5);
+  contact_statistics(r, std::numeric_limits<double>::infinity());
+  BOOST_TEST(r.stick_length_fraction == 0.0);
 }
 
 BOOST_AUTO_TEST_CASE(chip_back_stream_angle_eta1) {

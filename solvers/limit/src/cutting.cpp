@@ -213,6 +213,28 @@ void contact_statistics(CuttingResult& res, double l_max) {
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   res.stick_fraction = total > 0.0 ? stuck / total : 0.0;
+  // the stick zone from the tip, ended where |w_t| first reaches the threshold (linear between points)
+  {
+    const double thr = res.stick_tol * res.v_chip;
+    double end = 0.0, last = 0.0;  // last: the contact length, the largest s <= l_max
+    for (double si : res.s)
+      if (si <= l_max * (1.0 + 1e-12)) last = std::max(last, si);
+    bool crossed = false;
+    for (std::size_t i = 0; i < res.s.size() && res.s[i] <= l_max * (1.0 + 1e-12); ++i) {
+      const double a = std::abs(res.slip[i]);
+      if (a < thr) continue;
+      if (i == 0) {
+        end = res.s[0];
+      } else {
+        const double a0 = std::abs(res.slip[i - 1]);
+        end = res.s[i - 1] + (thr - a0) / (a - a0) * (res.s[i] - res.s[i - 1]);
+      }
+      crossed = true;
+      break;
+    }
+    const double len = std::isfinite(l_max) ? std::min(l_max, last) : last;
+    res.stick_length_fraction = len > 0.0 ? (crossed ? end / len : 1.0) : 0.0;
+  }
   res.mu_sticking = st_n > 0.0 ? st_t / st_n : nan;
   res.mu_sliding = sl_n > 0.0 ? sl_t / sl_n : nan;
   res.mu_app = std::abs(Fn) > 0.0 ? std::abs(Ft) / std::abs(Fn) : nan;
@@ -347,10 +369,15 @@ CuttingResult adapt_cutting(const CuttingSetup& c, const AdaptOptions& opt, std:
   if (opt.steps < 0) throw InputError("adapt_steps", "must be >= 0");
   if (!(opt.fraction > 0.0 && opt.fraction <= 1.0)) throw InputError("fraction", "must be in (0, 1]");
   Mesh mesh = cutting_model(c).mesh;
+  std::vector<CuttingAdaptStep> refinement;
   for (int step = 0;; ++step) {
     CuttingResult r = solve_cutting_on(cutting_model_on_mesh(mesh, c), c, settings);
-    if (history) history->push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.mu_sticking});
-    if (step == opt.steps) return r;
+    refinement.push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.mu_sticking, r.stick_length_fraction});
+    if (history) history->push_back(refinement.back());
+    if (step == opt.steps) {
+      r.refinement = std::move(refinement);
+      return r;
+    }
     mesh = adapt_mesh(mesh, r.solution, opt);
   }
 }

@@ -664,6 +664,7 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
   put("phi", c.phi, "rad");
   put("t2", r.t2 * t1, "m");
   put("stick_fraction", r.stick_fraction, "1");
+  put("stick_length_fraction", r.stick_length_fraction, "1");
   put("mu_sticking", r.mu_sticking, "1");
   put("mu_sliding", r.mu_sliding, "1");
   put("mu_app", r.mu_app, "1");
@@ -687,6 +688,27 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
   put("eta1_geometry", c.eta1, "rad");
   put("flux_back_contact", r.flux_back_contact, "1");
   for (const auto& nt : st.notes) out.notes.push_back(nt);
+  if (!r.refinement.empty()) {  // the refinement sequence of the final configuration
+    Table ref;
+    ref.name = "refinement";
+    std::vector<double> step, elements, fc, stick, stick_len, mu_st;
+    for (std::size_t i = 0; i < r.refinement.size(); ++i) {
+      const auto& h = r.refinement[i];
+      step.push_back(static_cast<double>(i));
+      elements.push_back(h.elements);
+      fc.push_back(h.fc_bar);
+      stick.push_back(h.stick_fraction);
+      stick_len.push_back(h.stick_length_fraction);
+      mu_st.push_back(h.mu_sticking);
+    }
+    ref.add("step", "1", step);
+    ref.add("elements", "1", elements);
+    ref.add("fc_bar", "1", fc);
+    ref.add("stick_fraction", "1", stick);
+    ref.add("stick_length_fraction", "1", stick_len);
+    ref.add("mu_sticking", "1", mu_st);
+    out.tables.push_back(std::move(ref));
+  }
   if (m.fit_eta) {
     Table hist;
     hist.name = "eta2_fit";
@@ -783,6 +805,14 @@ SolverSpec cutting_spec() {
                 {"fc_bar", "1", "F_c / (k t1 w)"},
                 {"l_over_t1", "1", "contact length / t1"},
                 {"elements", "1", "elements of the mesh"}}},
+              {"refinement",
+               "the final configuration after each adaptive refinement step (adapt_steps > 0; step 0: the structured mesh)",
+               {{"step", "1", "refinement step"},
+                {"elements", "1", "elements of the mesh"},
+                {"fc_bar", "1", "F_c / (k t1 w)"},
+                {"stick_fraction", "1", "fraction of the contact length in stick (node count)"},
+                {"stick_length_fraction", "1", "stick zone from the tip (interpolated threshold crossing) / contact length"},
+                {"mu_sticking", "1", "apparent friction over the stick zone"}}},
               {"eta2_fit",
                "iterations of the stream-angle fit (eta2, with fit_eta1 also eta1)",
                {{"eta2", "rad", "stream angle of the chip geometry beyond the contact"}, {"exit_angle", "rad", "chip-end exit angle"},
@@ -795,6 +825,7 @@ SolverSpec cutting_spec() {
                {"phi", Dim::angle, "shear angle used"},
                {"t2", Dim::length, "chip thickness (Eq. 2)"},
                {"stick_fraction", Dim::dimensionless, "fraction of the contact length in stick (zero slip)"},
+               {"stick_length_fraction", Dim::dimensionless, "stick zone from the tool tip: where |slip| first reaches stick_tol x chip speed (linear between the profile points) / contact length"},
                {"mu_sticking", Dim::dimensionless, "apparent friction sum|r_t|/sum|r_n| over the stick zone"},
                {"mu_sliding", Dim::dimensionless, "apparent friction sum|r_t|/sum|r_n| over the slip zone"},
                {"mu_app", Dim::dimensionless, "apparent friction |F_t|/|F_n| of the contact resultants"},

@@ -68,6 +68,12 @@ struct CuttingSetup {
   double exit_length = 2.0;  // machined surface beyond the tip, in t1 (depth > 0)
 };
 
+// One step of the adaptive refinement of a cutting solution (adapt_cutting).
+struct CuttingAdaptStep {
+  int elements = 0;
+  double fc_bar = 0.0, stick_fraction = 0.0, mu_sticking = 0.0, stick_length_fraction = 0.0;
+};
+
 struct CuttingResult {
   LimitModel model;
   LimitSolution solution;
@@ -84,6 +90,10 @@ struct CuttingResult {
   // contact edges, a mid-side node the mean of its edge's ends
   std::vector<double> sigma_n_field, tau_field;
   double stick_fraction = 0.0;  // fraction of the contact length in stick (|w_t| < stick_tol·v_chip)
+  // the stick zone from the tool tip: s where |w_t| first reaches stick_tol·v_chip, interpolated
+  // linearly between the profile points, over the contact length (1: no crossing; a continuous
+  // function of the nodal slips, unlike the node count of stick_fraction)
+  double stick_length_fraction = 0.0;
   // apparent friction Σ|r_t| / Σ|r_n| over the stick nodes, the slip nodes, and |F_t|/|F_n| of
   // the resultants over the whole contact (NaN where a zone is empty)
   double mu_sticking = 0.0, mu_sliding = 0.0, mu_app = 0.0;
@@ -110,6 +120,8 @@ struct CuttingResult {
   // mean velocity ∫v ds over the chip end relative to the rake direction r, > 0 away from the tool
   // (the free chip lifts off / curls away), < 0 toward it (it would penetrate the rake face beyond l)
   double chip_exit_angle = 0.0;
+  // adapt_cutting: the solution after each refinement step (step 0: the structured mesh)
+  std::vector<CuttingAdaptStep> refinement;
   // >= 0: not a solution but the summary (fc_bar, chip_exit_angle) of that evaluation of a
   // run's outer loop, answered from its record while the loop is replayed (checkpoints)
   int recorded_evaluation = -1;
@@ -267,7 +279,7 @@ struct NaturalContactResult {
 };
 NaturalContactResult natural_contact_length(CuttingSetup setup, double max_length = 4.0, double tol = 0.1,
                                             const SocpSettings& settings = {});
-// Recompute stick fraction and apparent friction from the profile, over s ≤ l_max.
+// Recompute the stick fraction, the stick length and the apparent friction from the profile, over s ≤ l_max.
 void contact_statistics(CuttingResult& r, double l_max);
 // Keep the profile points with s ≤ l_max only and recompute the statistics over them.
 void truncate_contact(CuttingResult& r, double l_max);
@@ -275,10 +287,6 @@ CuttingResult solve_cutting(const CuttingSetup& setup, const SocpSettings& setti
 // Dissipation-driven isotropic refinement of the cutting mesh with the full contact model (pressure
 // fixed point, streamlines): solve, mark the elements carrying `fraction` of the plastic dissipation
 // (Dörfler), bisect (conforming longest-edge), rebuild the boundary conditions, `steps` times.
-struct CuttingAdaptStep {
-  int elements = 0;
-  double fc_bar = 0.0, stick_fraction = 0.0, mu_sticking = 0.0;
-};
 CuttingResult adapt_cutting(const CuttingSetup& setup, int steps, double fraction = 0.5,
                             std::vector<CuttingAdaptStep>* history = nullptr, const SocpSettings& settings = {});
 // The same with either refinement (AdaptOptions::anisotropic: metric-directed bisection).

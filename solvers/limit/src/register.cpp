@@ -691,7 +691,7 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
   if (!r.refinement.empty()) {  // the refinement sequence of the final configuration
     Table ref;
     ref.name = "refinement";
-    std::vector<double> step, elements, fc, stick, stick_len, mu_st;
+    std::vector<double> step, elements, fc, stick, stick_len;
     for (std::size_t i = 0; i < r.refinement.size(); ++i) {
       const auto& h = r.refinement[i];
       step.push_back(static_cast<double>(i));
@@ -699,14 +699,12 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
       fc.push_back(h.fc_bar);
       stick.push_back(h.stick_fraction);
       stick_len.push_back(h.stick_length_fraction);
-      mu_st.push_back(h.mu_sticking);
     }
     ref.add("step", "1", step);
     ref.add("elements", "1", elements);
     ref.add("fc_bar", "1", fc);
     ref.add("stick_fraction", "1", stick);
-    ref.add("stick_length_fraction", "1", stick_len);
-    ref.add("mu_sticking", "1", mu_st);
+    ref.add("stick_length_fraction", "1", stick_len);  // (mu_sticking: NaN on steps without a stick zone)
     out.tables.push_back(std::move(ref));
   }
   if (m.fit_eta) {
@@ -811,8 +809,7 @@ SolverSpec cutting_spec() {
                 {"elements", "1", "elements of the mesh"},
                 {"fc_bar", "1", "F_c / (k t1 w)"},
                 {"stick_fraction", "1", "fraction of the contact length in stick (node count)"},
-                {"stick_length_fraction", "1", "stick zone from the tip (interpolated threshold crossing) / contact length"},
-                {"mu_sticking", "1", "apparent friction over the stick zone"}}},
+                {"stick_length_fraction", "1", "stick zone from the tip (interpolated threshold crossing) / contact length"}}},
               {"eta2_fit",
                "iterations of the stream-angle fit (eta2, with fit_eta1 also eta1)",
                {{"eta2", "rad", "stream angle of the chip geometry beyond the contact"}, {"exit_angle", "rad", "chip-end exit angle"},

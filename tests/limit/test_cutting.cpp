@@ -230,20 +230,26 @@ BOOST_AUTO_TEST_CASE(chip_exit_angle_sign_with_friction) {
   BOOST_TEST(lo.flux_rake_free > 0.0);  // would cross the rake face beyond l
 }
 
+// A frictional chip (alpha = 6 deg, mu = 0.5, phi_M, l = t1, n = 4) with the stream angles eta1, eta2.
+static CuttingSetup turned_chip(double eta1, double eta2) {
+  CuttingSetup c;
+  c.n = 4;
+  c.contact_length = 1.0;
+  c.mu = 0.5;
+  c.alpha = 6.0 * M_PI / 180;
+  c.phi = merchant_shear_angle(c.alpha, c.mu);
+  c.eta1 = eta1;
+  c.eta2 = eta2;
+  return c;
+}
+
 BOOST_AUTO_TEST_CASE(turned_free_chip_mass_balance) {
   // η2 ≠ 0 (paper Fig. 5): the chip beyond l is a second parallelogram turned about the line C–D;
   // the outward fluxes through the top,
   // the chip back (straight + turned), the chip end and the rake line beyond l add up to the
   // inflow t1 (incompressibility), which checks the classification of the turned surfaces.
   for (double eta2 : {-0.3, 0.2}) {
-    CuttingSetup c;
-    c.n = 4;
-    c.contact_length = 1.0;
-    c.mu = 0.5;
-    c.alpha = 6.0 * M_PI / 180;
-    c.phi = merchant_shear_angle(c.alpha, c.mu);
-    c.eta2 = eta2;
-    const auto r = solve_cutting(c);
+    const auto r = solve_cutting(turned_chip(0.0, eta2));
     const double total = r.flux_top + r.flux_back + r.flux_end + r.flux_rake_free;
     BOOST_TEST_MESSAGE("eta2=" << eta2 << " fluxes top " << r.flux_top << " back " << r.flux_back << " end " << r.flux_end
                                 << " rake " << r.flux_rake_free << " sum " << total << " exit angle " << r.chip_exit_angle);
@@ -292,14 +298,7 @@ BOOST_AUTO_TEST_CASE(chip_back_stream_angle_eta1) {
   // material out (measured at n = 6: flux over the back −0.152 / +0.144 at η1 = ±0.15), and the
   // fit of both stream angles returns from (0.15, 0.1) to the straight chip.
   for (const auto& [eta1, eta2] : {std::pair{0.2, -0.3}, std::pair{-0.1, 0.2}}) {
-    CuttingSetup c;
-    c.n = 4;
-    c.contact_length = 1.0;
-    c.mu = 0.5;
-    c.alpha = 6.0 * M_PI / 180;
-    c.phi = merchant_shear_angle(c.alpha, c.mu);
-    c.eta1 = eta1;
-    c.eta2 = eta2;
+    const CuttingSetup c = turned_chip(eta1, eta2);
     const auto r = solve_cutting(c);
     const double total = r.flux_top + r.flux_back + r.flux_end + r.flux_rake_free;
     BOOST_TEST_MESSAGE("eta1=" << eta1 << " eta2=" << eta2 << " fluxes top " << r.flux_top << " back " << r.flux_back

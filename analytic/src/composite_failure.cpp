@@ -64,15 +64,43 @@ struct FractureGrid {
   }
 };
 
-// max over a in [0, a0] of (tau_T/S_T)^2 + (tau_L/S_L)^2 (LaRC02 matrix compression).
+// max over a in [0, a0] of (tau_T/S_T)^2 + (tau_L/S_L)^2 (LaRC02 matrix compression), with
+// tau_T = <-s22 c (s - eta_T c)>, tau_L = <c (|t12| + eta_L s22 c)>, c = cos a, s = sin a. The grid
+// brackets the global maximum; a safeguarded Newton iteration on dg/da = 0 (analytic first and
+// second derivatives, bisection whenever a Newton step leaves the bracket or does not shrink it
+// fast enough) then locates it to round-off in 4-6 steps, one sincos each.
 PlaneSearch larc_matrix_compression(double s22, double t12, double S_T, double S_L, double eta_T,
                                     double eta_L, double alpha0) {
+  const double at = std::abs(t12);
   auto g = [&](double c, double s) {
     const double tT = macaulay(-s22 * c * (s - eta_T * c));
-    const double tL = macaulay(c * (std::abs(t12) + eta_L * s22 * c));
+    const double tL = macaulay(c * (at + eta_L * s22 * c));
     return sq(tT / S_T) + sq(tL / S_L);
   };
-  auto f = [&](double a) { return g(std::cos(a), std::sin(a)); };
+  // g, dg/da and d2g/da2 at a (the Macaulay brackets contribute only where open)
+  struct Derivs {
+    double g, d1, d2;
+  };
+  auto derivs = [&](double a) {
+    const double c = std::cos(a), s = std::sin(a);
+    const double c2 = c * c - s * s, s2 = 2.0 * s * c;  // cos 2a, sin 2a
+    const double tT = -s22 * c * (s - eta_T * c), tL = c * (at + eta_L * s22 * c);
+    const double tT1 = -s22 * (c2 + eta_T * s2), tT2 = -s22 * (-2.0 * s2 + 2.0 * eta_T * c2);
+    const double tL1 = -at * s - eta_L * s22 * s2, tL2 = -at * c - 2.0 * eta_L * s22 * c2;
+    Derivs r{0.0, 0.0, 0.0};
+    const double wT = 1.0 / (S_T * S_T), wL = 1.0 / (S_L * S_L);
+    if (tT > 0.0) {
+      r.g += tT * tT * wT;
+      r.d1 += 2.0 * tT * tT1 * wT;
+      r.d2 += 2.0 * (tT1 * tT1 + tT * tT2) * wT;
+    }
+    if (tL > 0.0) {
+      r.g += tL * tL * wL;
+      r.d1 += 2.0 * tL * tL1 * wL;
+      r.d2 += 2.0 * (tL1 * tL1 + tL * tL2) * wL;
+    }
+    return r;
+  };
   thread_local FractureGrid table;
   const FractureGrid& grid = table.at(alpha0);
   const int n = FractureGrid::n;
@@ -85,29 +113,42 @@ PlaneSearch larc_matrix_compression(double s22, double t12, double S_T, double S
       best = i;
     }
   }
-  // Golden-section refinement on the neighbouring grid interval.
+  PlaneSearch out{best_v, alpha0 * best / n};
+  // A stationary point of g in the grid intervals next to the best grid point: dg/da > 0 at lo and
+  // < 0 at hi. Otherwise the maximum over the bracket is at the grid point itself (or an end).
   double lo = alpha0 * std::max(0, best - 1) / n, hi = alpha0 * std::min(n, best + 1) / n;
-  const double gr = 0.6180339887498949;
-  double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-  double f1 = f(x1), f2 = f(x2);
-  for (int it = 0; it < 60; ++it) {
-    if (f1 < f2) {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + gr * (hi - lo);
-      f2 = f(x2);
-    } else {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - gr * (hi - lo);
-      f1 = f(x1);
-    }
+  if (best > 0 && best < n) {
+    // keep the half-interval whose ends straddle the sign change of dg/da
+    const double d_mid = derivs(out.angle).d1;
+    if (d_mid > 0.0) lo = out.angle;
+    else if (d_mid < 0.0) hi = out.angle;
+    else return out;
   }
-  const double xm = 0.5 * (lo + hi), fm = f(xm);
-  if (fm >= best_v) return {fm, xm};
-  return {best_v, alpha0 * best / n};
+  const Derivs dlo = derivs(lo), dhi = derivs(hi);
+  if (!(dlo.d1 > 0.0 && dhi.d1 < 0.0)) return out;
+  double a = 0.5 * (lo + hi), step_old = hi - lo, step = step_old;
+  for (int it = 0; it < 60; ++it) {
+    const Derivs d = derivs(a);
+    if (d.d1 > 0.0) lo = a;
+    else if (d.d1 < 0.0) hi = a;
+    else break;
+    // Newton on dg/da when it stays inside the bracket and halves the step at least every two
+    // iterations; bisection otherwise
+    const double newton = d.d2 < 0.0 ? a - d.d1 / d.d2 : HUGE_VAL;
+    double next;
+    if (newton > lo && newton < hi && std::abs(newton - a) < 0.5 * std::abs(step_old)) {
+      next = newton;
+    } else {
+      next = 0.5 * (lo + hi);
+    }
+    step_old = step;
+    step = next - a;
+    a = next;
+    if (std::abs(step) <= 1e-14 || hi - lo <= 1e-14) break;  // radians: the value is flat to 1e-28 there
+  }
+  const double va = g(std::cos(a), std::sin(a));
+  if (va >= out.value) out = {va, a};
+  return out;
 }
 
 }  // namespace

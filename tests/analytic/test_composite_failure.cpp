@@ -91,6 +91,60 @@ BOOST_AUTO_TEST_CASE(larc02_strain_based_fibre_tension_and_g) {
   BOOST_TEST(larc02_failure({0, m.Y_T, 0}, m).matrix == 1.0, tt::tolerance(1e-12));
 }
 
+BOOST_AUTO_TEST_CASE(larc02_fracture_plane_search_matches_a_dense_scan) {
+  // The matrix-compression index is the maximum over the fracture angle a in [0, alpha0] of
+  // (tau_T/S_T)^2 + (tau_L/S_L)^2 (Davila-Camanho LaRC02, Kahwash Appendix A), tau_T =
+  // <-s22 cos a (sin a - eta_T cos a)>, tau_L = <cos a (|t12| + eta_L s22 cos a)>. Reference: a scan
+  // of 200,001 angles refined by 200 golden-section steps, written out here independently of the
+  // library's grid-and-Newton search.
+  const Lamina m = gfrp();
+  const double ST = transverse_shear_strength(m.Y_C, m.alpha0), eT = larc_eta_T(m.alpha0);
+  const double eL = larc_eta_L(m.S_L, m.Y_C, m.alpha0);
+  auto f = [&](double s22, double t12, double a) {
+    const double c = std::cos(a), s = std::sin(a);
+    const double tT = std::max(0.0, -s22 * c * (s - eT * c)), tL = std::max(0.0, c * (std::abs(t12) + eL * s22 * c));
+    return (tT / ST) * (tT / ST) + (tL / m.S_L) * (tL / m.S_L);
+  };
+  auto dense = [&](double s22, double t12) {
+    const int n = 200000;
+    int best = 0;
+    for (int i = 1; i <= n; ++i) {
+      if (f(s22, t12, m.alpha0 * i / n) > f(s22, t12, m.alpha0 * best / n)) best = i;
+    }
+    double lo = m.alpha0 * std::max(0, best - 1) / n, hi = m.alpha0 * std::min(n, best + 1) / n;
+    for (int it = 0; it < 200; ++it) {
+      const double x1 = hi - 0.6180339887498949 * (hi - lo), x2 = lo + 0.6180339887498949 * (hi - lo);
+      (f(s22, t12, x1) < f(s22, t12, x2) ? lo : hi) = f(s22, t12, x1) < f(s22, t12, x2) ? x1 : x2;
+    }
+    return std::max(f(s22, t12, 0.5 * (lo + hi)), f(s22, t12, m.alpha0 * best / n));
+  };
+  unsigned long long state = 12345;
+  auto uniform = [&state]() {  // 64-bit LCG (Knuth), top 53 bits
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  double worst = 0.0;
+  for (int k = 0; k < 400; ++k) {
+    // transverse compression from 0.001 to 2 Y_C, shear up to +-2 S_L; every tenth state pure
+    // compression (the maximum at an interior angle near alpha0) and every tenth pure shear-free
+    const double s22 = -m.Y_C * (0.001 + 1.999 * uniform());
+    const double t12 = k % 10 == 0 ? 0.0 : m.S_L * (4.0 * uniform() - 2.0);
+    const FailureIndices r = larc02_failure({0.0, s22, t12}, m);
+    const double ref = dense(s22, t12);
+    BOOST_TEST(r.fracture_angle >= 0.0);
+    BOOST_TEST(r.fracture_angle <= m.alpha0);
+    BOOST_TEST(f(s22, t12, r.fracture_angle) == r.matrix, tt::tolerance(1e-15));  // value at the angle returned
+    worst = std::max(worst, std::abs(r.matrix - ref) / ref);
+    BOOST_TEST(r.matrix == ref, tt::tolerance(1e-13));
+  }
+  BOOST_TEST_MESSAGE("LaRC02 fracture-plane search against the dense scan: largest relative difference " << worst);
+  // Pure transverse compression s22 = -Y_C: the index is 1 at the fracture angle alpha0 (the
+  // definition of S_T and eta_T from alpha0).
+  const FailureIndices uc = larc02_failure({0.0, -m.Y_C, 0.0}, m);
+  BOOST_TEST(uc.matrix == 1.0, tt::tolerance(1e-12));
+  BOOST_TEST(uc.fracture_angle == m.alpha0, tt::tolerance(1e-6));
+}
+
 BOOST_AUTO_TEST_CASE(larc02_transverse_compression_raises_shear_strength) {
   // Kahwash Fig. 3b: LaRC02 predicts the beneficial effect of moderate transverse compression on
   // shear failure. Maximum stress has none; Hashin with S_T from the LaRC02 relation (the same

@@ -20,7 +20,7 @@ Mat2 voigt_to_tensor(const Eigen::Vector3d& s) {
 
 ExplicitEFG::ExplicitEFG(const Discretisation& d, const Orthotropic& mat, double theta,
                          const ExplicitOptions& opt)
-    : mat_(mat), Qbar_(mat.Qbar(theta)), T_(stress_rotation(theta)), theta_(theta), opt_(opt), support_(d.support), spacing_(d.spacing),
+    : mat_(mat), Qbar_(mat.Qbar(theta)), T_(stress_rotation(theta)), theta_(theta), opt_(opt), larc_bound_(opt.failure.lamina), support_(d.support), spacing_(d.spacing),
       X0_(d.nodes), xr_(d.nodes), x_(d.nodes) {
   if (opt_.update_interval < 1) throw InputError("update_interval", "must be >= 1");
   const std::size_t n = X0_.size();
@@ -175,12 +175,28 @@ void ExplicitEFG::build_node_gp() {
   node_gp_dirty_ = false;
 }
 
+Larc02CompressionBound::Larc02CompressionBound(const analytic::Lamina& m)
+    : ST_(analytic::transverse_shear_strength(m.Y_C, m.alpha0)), SL_(m.S_L),
+      eta_L_(analytic::larc_eta_L(m.S_L, m.Y_C, m.alpha0)) {
+  const double eta_T = analytic::larc_eta_T(m.alpha0);
+  tT_per_p_ = 0.5 * (std::sqrt(1.0 + eta_T * eta_T) - eta_T);
+}
+
+double Larc02CompressionBound::operator()(double s22, double t12) const {
+  const double p = std::abs(s22), at = std::abs(t12);
+  const double tT = tT_per_p_ * p;
+  double tL;
+  const double k = eta_L_ * p;  // tau_L = at c - k c^2
+  if (k > 0.0) {
+    tL = at < 2.0 * k ? at * at / (4.0 * k) : at - k;
+  } else {
+    tL = at - k;
+  }
+  return (1.0 + 1e-12) * ((tT / ST_) * (tT / ST_) + (tL / SL_) * (tL / SL_));
+}
+
 double larc02_matrix_compression_bound(double s22, double t12, const analytic::Lamina& m) {
-  const double ST = analytic::transverse_shear_strength(m.Y_C, m.alpha0);
-  const double eta_T = analytic::larc_eta_T(m.alpha0), eta_L = analytic::larc_eta_L(m.S_L, m.Y_C, m.alpha0);
-  const double a = std::abs(s22);
-  const double tT = a * (0.5 + std::max(0.0, -eta_T)), tL = std::abs(t12) + std::max(0.0, -eta_L) * a;
-  return (tT / ST) * (tT / ST) + (tL / m.S_L) * (tL / m.S_L);
+  return Larc02CompressionBound(m)(s22, t12);
 }
 
 bool ExplicitEFG::update_damage(GP& q) const {
@@ -208,7 +224,7 @@ bool ExplicitEFG::update_damage(GP& q) const {
     // excluding it (with sigma11 < -Y_C LaRC02 uses misalignment-frame stresses: search).
     const double floor = proportional ? q.index[matrix_damage] : 1.0;
     const bool search = q.index[matrix_damage] < 1.0 &&
-                        (ps.s11 < -fo.lamina.Y_C || larc02_matrix_compression_bound(ps.s22, ps.t12, fo.lamina) >= floor);
+                        (ps.s11 < -fo.lamina.Y_C || larc_bound_(ps.s22, ps.t12) >= floor);
     fi = analytic::larc02_failure(ps, fo.lamina, search);
   } else {
     fi = analytic::failure_indices(fo.criterion, ps, fo.lamina);

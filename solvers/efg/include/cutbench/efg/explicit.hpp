@@ -87,11 +87,23 @@ struct FailureOptions {
 enum class Erosion { none, fibre_and_matrix, fibre_or_matrix };
 
 // Upper bound of the LaRC02 matrix-compression index (sigma22 < 0, fracture plane searched over
-// [0, alpha0]) from |sigma22| and |tau12| alone: with c = cos a, s = sin a,
-//   tau_T = <|s22| c (s - eta_T c)> <= |s22| (1/2 + max(0, -eta_T)),
-//   tau_L = <c (|t12| + eta_L s22 c)> <= |t12| + max(0, -eta_L) |s22|,
-// so the index is at most (tau_T,max/S_T)^2 + (tau_L,max/S_L)^2. Below 1 the costly search can be
-// skipped without changing any failure decision (used by ExplicitEFG; tested against the search).
+// [0, alpha0]) from |sigma22| = p and |tau12| alone: with c = cos a, s = sin a,
+//   tau_T = <p c (s - eta_T c)> = <(p/2) (sin 2a - eta_T cos 2a - eta_T)> <= (p/2) (sqrt(1 + eta_T^2) - eta_T),
+//   tau_L = <c (|t12| - eta_L p c)> <= max over c in [0, 1] of |t12| c - eta_L p c^2
+//         (|t12|^2 / (4 eta_L p) at the vertex c = |t12| / (2 eta_L p) <= 1, else |t12| - eta_L p;
+//          |t12| + |eta_L| p for eta_L < 0),
+// so the index is at most (tau_T,max/S_T)^2 + (tau_L,max/S_L)^2, raised by 1e-12 against round-off
+// (for t12 = 0 the bound is attained at a = alpha0). Below the stored index the costly search
+// cannot raise it and is skipped without changing any failure decision (used by ExplicitEFG;
+// tested against the search). The lamina constants are computed once.
+class Larc02CompressionBound {
+public:
+  explicit Larc02CompressionBound(const analytic::Lamina& m);
+  double operator()(double s22, double t12) const;
+
+private:
+  double ST_ = 0.0, SL_ = 0.0, eta_L_ = 0.0, tT_per_p_ = 0.0;
+};
 double larc02_matrix_compression_bound(double s22, double t12, const analytic::Lamina& m);
 enum DamageMode : int { fibre_damage = 0, matrix_damage = 1, interface_damage = 2 };
 
@@ -267,6 +279,7 @@ private:
   Vec2 tool_force_ = Vec2::Zero();
   int ncontact_ = 0, nstick_ = 0;
   ExplicitOptions opt_;
+  Larc02CompressionBound larc_bound_;  // of opt_.failure.lamina
   std::vector<double> support_;
   double spacing_ = 0.0;
   std::vector<Vec2> X0_, xr_, x_, v_, a_, fint_, fext_;

@@ -148,6 +148,15 @@ std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const st
                                        const std::vector<double>& support, const WeightParams& weight,
                                        bool derivatives, const std::vector<Segment>& opaque,
                                        const VisibilityFrame& frame) {
+  std::vector<ShapeData> out;
+  shape_functions_into(points, nodes, support, weight, derivatives, opaque, frame, out);
+  return out;
+}
+
+void shape_functions_into(const std::vector<Vec2>& points, const std::vector<Vec2>& nodes,
+                          const std::vector<double>& support, const WeightParams& weight, bool derivatives,
+                          const std::vector<Segment>& opaque, const VisibilityFrame& frame,
+                          std::vector<ShapeData>& out) {
   const bool framed = frame.points != nullptr && frame.nodes != nullptr;
   if (framed && (frame.points->size() != points.size() || frame.nodes->size() != nodes.size())) {
     throw NumericalError("EFG: visibility frame sizes differ from the points and nodes");
@@ -155,7 +164,7 @@ std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const st
   const double dmax = *std::max_element(support.begin(), support.end());
   CellList cl;
   cl.build(nodes, dmax);
-  std::vector<ShapeData> out(points.size());
+  out.resize(points.size());
   const long n = static_cast<long>(points.size());
   bool ok = true;
   long bad = -1;
@@ -184,7 +193,6 @@ std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const st
                          std::to_string(points[bad].x()) + ", " + std::to_string(points[bad].y()) +
                          "): enlarge the domain of influence");
   }
-  return out;
 }
 
 }  // namespace cutbench::efg

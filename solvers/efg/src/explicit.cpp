@@ -418,10 +418,13 @@ void ExplicitEFG::update_reference() {
     q.xr = xg;
   }
   xr_ = x_;
-  std::vector<std::size_t> ids(gp_.size());
-  for (std::size_t g = 0; g < gp_.size(); ++g) ids[g] = g;
-  auto sf = gauss_shapes(ids);
-  for (std::size_t g = 0; g < gp_.size(); ++g) gp_[g].sd = std::move(sf[g]);
+  // every Gauss point's functions rebuilt into the spare set, then swapped in: the spare keeps the
+  // previous functions' storage for the next update, so the rebuild allocates nothing
+  gauss_pts_.resize(gp_.size());
+  for (std::size_t g = 0; g < gp_.size(); ++g) gauss_pts_[g] = gp_[g].xr;
+  shape_functions_into(gauss_pts_, xr_, support_, opt_.weight, true, opaque_, VisibilityFrame{&Xg0_, &X0_},
+                       spare_sd_);
+  for (std::size_t g = 0; g < gp_.size(); ++g) std::swap(gp_[g].sd, spare_sd_[g]);
   node_gp_dirty_ = true;
 }
 

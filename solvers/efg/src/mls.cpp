@@ -179,7 +179,12 @@ bool mls_shape(const Vec2& x, const std::vector<Vec2>& nodes, const std::vector<
                const std::vector<int>& candidates, const WeightParams& weight, ShapeData& out,
                bool derivatives) {
   out.clear();
-  std::vector<double> w, wx, wy;
+  // per-thread scratch: its storage is kept between calls (no allocation per point)
+  thread_local std::vector<double> w, wx, wy;
+  thread_local std::vector<Eigen::Vector3d> p;
+  w.clear();
+  wx.clear();
+  wy.clear();
   double hmax = 0.0;
   for (int I : candidates) {
     const Vec2 d = x - nodes[I];
@@ -215,7 +220,7 @@ bool mls_shape(const Vec2& x, const std::vector<Vec2>& nodes, const std::vector<
     wy[k] = (wy[k] / S) - w[k] * Sy / S;
   }
   const double h = hmax;
-  std::vector<Eigen::Vector3d> p(n);
+  p.resize(n);
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), Ax = Eigen::Matrix3d::Zero(), Ay = Eigen::Matrix3d::Zero();
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2& xi = nodes[out.nodes[k]];

@@ -55,6 +55,12 @@ std::vector<ShapeData> shape_functions(const std::vector<Vec2>& points, const st
                                        const std::vector<double>& support, const WeightParams& weight,
                                        bool derivatives = true, const std::vector<Segment>& opaque = {},
                                        const VisibilityFrame& frame = {});
+// The same into `out` (resized to the points): each entry's storage is reused, so a rebuild of
+// shape functions already held allocates nothing (the updated-Lagrangian reference updates).
+void shape_functions_into(const std::vector<Vec2>& points, const std::vector<Vec2>& nodes,
+                          const std::vector<double>& support, const WeightParams& weight, bool derivatives,
+                          const std::vector<Segment>& opaque, const VisibilityFrame& frame,
+                          std::vector<ShapeData>& out);
 
 // Gauss-Legendre points and weights on [-1, 1] for n = 1..4.
 void gauss_legendre(int n, std::vector<double>& xi, std::vector<double>& w);

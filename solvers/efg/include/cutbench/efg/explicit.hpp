@@ -267,6 +267,8 @@ private:
   // Shape functions of the given Gauss points on the reference configuration, with the visibility
   // decided in the initial (material) configuration, where the opaque segments are given.
   std::vector<ShapeData> gauss_shapes(const std::vector<std::size_t>& ids) const;
+  std::vector<Vec2> gauss_pts_;        // reference positions of every Gauss point (update_reference)
+  std::vector<ShapeData> spare_sd_;    // storage swapped with the Gauss points' functions on a rebuild
   void build_node_gp();
   void apply_bcs(double t);
 

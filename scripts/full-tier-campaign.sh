@@ -33,11 +33,12 @@ case "$method" in
     compute --case afrasiabi2021/fig10
     ;;
   efg)
-    # Kahwash: the node study and every LaRC02 / Hashin run first (0.5-2 CPU-min each at 12,015
-    # nodes); then the maximum-stress snapshot run at 30 deg that completes Figs 6-7 (13 CPU-min) and
-    # the LaRC02 snapshot run at 75 deg of Figs 8-9 (13 CPU-min); then maximum stress at 15-75 deg
-    # (8-37 min each on one thread: they separate late, after 50-115 um of travel) and the
-    # maximum-stress snapshot run of Figs 8-9.
+    # Kahwash, the paper's failure model (no erosion): every run goes on to the critical-time-step
+    # drop, 50-150 um of travel, while the squeezed degraded chip lowers the step to 1-2 % of its
+    # initial value. Measured: the smallest node-study mesh (2,574 nodes, LaRC02 30 deg) took 70,686
+    # steps and 845 s on one niced thread beside three other jobs (completion at 104 um); a
+    # 12,015-node run is of the order of an hour on one thread. Order: the node study, then Hashin
+    # and the time-scaling points, the snapshot runs of Figs 6-8, LaRC02, and maximum stress last.
     compute --case kahwash2018/table2 --case kahwash2018/table6
     compute --case kahwash2018/table4 --series efg_hashin --series time_scaling
     compute --case kahwash2018/fig06 --series hashin --series larc02

@@ -279,9 +279,11 @@ void surface_metrics(const CuttingSetup& c, const std::vector<Vec2>& x0, const s
     return;
   }
   const double x_max = s.tool_position().x() - 3.0 * c.uncut_thickness;
+  // the lattice columns the tool has not reached, chosen by their initial x: a choice by the
+  // current x would add the columns of the chip that curls forward over the uncut surface
   std::map<long, std::vector<std::pair<double, char>>> columns;  // initial column -> (y, flag)
   for (std::size_t i = 0; i < x0.size(); ++i) {
-    if (fixed[i] || s.positions()[i].x() > x_max) continue;
+    if (fixed[i] || x0[i].x() > x_max) continue;
     columns[std::lround(x0[i].x() / r.dx)].emplace_back(s.positions()[i].y(), flag[i]);
   }
   double n = 0.0, top = 0.0, second = 0.0;

@@ -18,14 +18,16 @@ compute() {  # a failed run is reported and the campaign goes on
 }
 case "$method" in
   sph)
-    # Cases that can be recorded soonest first: Fig 8 (nine 2121-particle runs with the
-    # perturbed-lattice ensemble, 8-20 CPU-min each); Figs 2, 5 and 7, which need the two
-    # mu = 0.35 runs that Fig 6 shares (55-60 min each on two threads, about 2 h on one); the
-    # coarse series of Figs 9 and 10 (about 15 CPU-min each); then the long ones: Fig 6 at
-    # mu = 0.5 and 0.65 and the fine series of Figs 9 and 10 (2-2.5 h each on one thread).
+    # Most cases per CPU-hour first: the enhanced mu = 0.35 run (Fig 2 alone needs it) and the
+    # reference one, which with it make Figs 5 and 7 and half of Fig 6 (about 2 h each on one
+    # thread, 50 min on two); Fig 8 (nine 2121-particle runs with the perturbed-lattice ensemble,
+    # 30-45 CPU-min each); the coarse series of Figs 9 and 10 (about 15 CPU-min each); then the
+    # long ones: Fig 6 at mu = 0.5 and 0.65 and the fine series of Figs 9 and 10 (2-2.5 h each on
+    # one thread).
     compute --case afrasiabi2021/fig03 --case afrasiabi2021/table1
-    compute --case afrasiabi2021/fig08
+    compute --case afrasiabi2021/fig02
     compute --case afrasiabi2021/fig05
+    compute --case afrasiabi2021/fig08
     compute --case afrasiabi2021/fig09 --series coarse
     compute --case afrasiabi2021/fig10 --series coarse
     compute --case afrasiabi2021/fig06

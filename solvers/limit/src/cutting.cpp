@@ -257,7 +257,8 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
   res.t2 = chip_thickness(c.t1, c.phi, c.alpha);
   if ((c.mu > 0.0 || c.unilateral) && c.coulomb_fixed_point) {
     CoulombOptions co;
-    co.relaxation = c.coulomb_relaxation;
+    co.anderson_depth = c.coulomb_anderson_depth;
+    co.relaxation = c.coulomb_anderson_depth > 0 ? c.coulomb_anderson_mixing : c.coulomb_relaxation;
     co.max_iter = c.coulomb_max_iter;
     res.solution = solve_limit_coulomb(res.model, settings, co, &res.coulomb);
   } else {

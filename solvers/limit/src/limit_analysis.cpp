@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <set>
 
+#include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
 #include "cutbench/common/errors.hpp"
@@ -333,29 +335,67 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
 
 LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings, const CoulombOptions& opt,
                                   CoulombReport* report) {
+  if (opt.anderson_depth < 0) throw InputError("anderson_depth", "must be >= 0");
+  if (!(opt.relaxation > 0.0 && opt.relaxation <= 1.0)) throw InputError("relaxation", "must be in (0, 1]");
+  CoulombReport rep;
+  auto solve = [&]() {
+    LimitSolution s = solve_limit(model, settings);
+    rep.ipm_iterations.push_back(s.socp.iterations);
+    return s;
+  };
   // start: the associated (coupled) formulation gives a first pressure distribution
   for (auto& c : model.contacts) c.tresca_bound = std::numeric_limits<double>::quiet_NaN();
-  LimitSolution sol = solve_limit(model, settings);
-  CoulombReport rep;
+  LimitSolution sol = solve();
   const auto nc = static_cast<Eigen::Index>(model.contacts.size());
   VectorXd p = (-sol.contact_rn).cwiseMax(0.0);
   rep.collapse_history.push_back(sol.collapse);
+  std::deque<VectorXd> dp, df;  // Anderson history: differences of iterates and residuals
+  VectorXd p_prev, f_prev;
   for (int it = 1; it <= opt.max_iter; ++it) {
     for (Eigen::Index c = 0; c < nc; ++c) {
       auto& cn = model.contacts[static_cast<std::size_t>(c)];
       cn.tresca_bound = cn.mu * p[c];
     }
-    sol = solve_limit(model, settings);
-    const VectorXd pn = (-sol.contact_rn).cwiseMax(0.0);
-    const double change = (pn - p).cwiseAbs().maxCoeff() / std::max(1e-12, pn.cwiseAbs().maxCoeff());
+    sol = solve();
+    const VectorXd g = (-sol.contact_rn).cwiseMax(0.0);
+    const VectorXd f = g - p;
+    const double change = f.cwiseAbs().maxCoeff() / std::max(1e-12, g.cwiseAbs().maxCoeff());
     rep.iterations = it;
     rep.change = change;
+    rep.change_history.push_back(change);
     rep.collapse_history.push_back(sol.collapse);
-    p = opt.relaxation * pn + (1.0 - opt.relaxation) * p;
     if (change < opt.tol) {
       rep.converged = true;
       break;
     }
+    VectorXd next = p + opt.relaxation * f;
+    if (opt.anderson_depth > 0) {
+      if (f_prev.size() == f.size()) {
+        if (f.norm() > opt.anderson_restart * f_prev.norm()) {
+          dp.clear();
+          df.clear();
+        } else {
+          dp.push_back(p - p_prev);
+          df.push_back(f - f_prev);
+          if (static_cast<int>(df.size()) > opt.anderson_depth) {
+            dp.pop_front();
+            df.pop_front();
+          }
+        }
+      }
+      p_prev = p;
+      f_prev = f;
+      if (!df.empty()) {
+        Eigen::MatrixXd F(f.size(), static_cast<Eigen::Index>(df.size())), P(f.size(), static_cast<Eigen::Index>(df.size()));
+        for (std::size_t j = 0; j < df.size(); ++j) {
+          F.col(static_cast<Eigen::Index>(j)) = df[j];
+          P.col(static_cast<Eigen::Index>(j)) = dp[j];
+        }
+        const VectorXd gamma = F.colPivHouseholderQr().solve(f);
+        if (gamma.allFinite()) next -= (P + opt.relaxation * F) * gamma;
+      }
+    }
+    p = next.cwiseMax(0.0);
   }
   if (report) *report = rep;
   return sol;

@@ -338,6 +338,9 @@ const DeclaredParams<CuttingRun>& cutting_declaration() {
         .add(p_int("n", "mesh density (cells across t1)", 8, 2, 64), [](S& s, double v) { s.geometry.n = static_cast<int>(v); })
         .add(switch_param("coulomb_fixed_point", "true: non-associated Coulomb (fixed point on the pressure); false: the coupled (associated) cone", true),
              [](S& s, double v) { s.geometry.coulomb_fixed_point = v != 0.0; })
+        .add(option_param("coulomb_update", "update of the contact pressure between fixed-point steps",
+                          {{"relaxed", "p <- 0.5 g(p) + 0.5 p"}, {"anderson", "Anderson acceleration, depth 5, mixing 1"}}, "anderson"),
+             [](S& s, double v) { s.geometry.coulomb_anderson_depth = v != 0.0 ? 5 : 0; })
         .add(option_param("streamline", "free surfaces held as streamlines (v.n = 0)",
                           {{"none", "no surface held"}, {"top", "the uncut top surface"}, {"top_back", "the uncut top and the chip back"},
                            {"top_back_beyond", "the uncut top and the chip back beyond the contact length"}},
@@ -741,6 +744,11 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
     out.tables.push_back(std::move(hist));
   }
   put("coulomb_iterations", r.coulomb.iterations, "1");
+  {
+    int total = 0;
+    for (int i : r.coulomb.ipm_iterations) total += i;
+    put("coulomb_ipm_iterations", total, "1");
+  }
   if (c.mu > 0.0 && c.coulomb_fixed_point && !r.coulomb.converged)
     out.notes.push_back("Coulomb fixed point not converged (last relative pressure change " +
                         std::to_string(r.coulomb.change) + ")");
@@ -844,6 +852,7 @@ SolverSpec cutting_spec() {
                {"solves", Dim::dimensionless, "limit-analysis problems solved (Coulomb steps excluded)"},
                {"elements", Dim::dimensionless, "elements of the (final) mesh"},
                {"coulomb_iterations", Dim::dimensionless, "fixed-point iterations on the contact pressure"},
+               {"coulomb_ipm_iterations", Dim::dimensionless, "interior-point iterations of all the solves of the last fixed point on the contact pressure"},
                {"iterations", Dim::dimensionless, "interior-point iterations (last solve)"},
                {"kkt_dimension", Dim::dimensionless, "size of the KKT system"},
                {"solve_time", Dim::time, "wall time of the solves"}};

@@ -192,14 +192,25 @@ NtScaling nt_scaling(const ConeDims& k, const VectorXd& s, const VectorXd& z) {
   NtScaling w;
   w.lp_w.resize(k.nonneg);
   for (int i = 0; i < k.nonneg; ++i) w.lp_w[i] = std::sqrt(s[i] / z[i]);
-  int o = k.nonneg;
-  w.soc_w.reserve(k.soc.size());
-  w.soc_winv.reserve(k.soc.size());
+  std::size_t total = 0;
+  int mmax = 1;
+  w.soc_off.reserve(k.soc.size());
   for (int m : k.soc) {
-    Eigen::MatrixXd W(m, m), Wi(m, m);
+    w.soc_off.push_back(total);
+    total += static_cast<std::size_t>(m) * static_cast<std::size_t>(m);
+    mmax = std::max(mmax, m);
+  }
+  w.soc_w.resize(total);
+  w.soc_winv.resize(total);
+  VectorXd wb(mmax);  // scratch: the scaling point of the normalised pair
+  int o = k.nonneg;
+  for (std::size_t c = 0; c < k.soc.size(); ++c) {
+    const int m = k.soc[c];
+    double* W = w.soc_w.data() + w.soc_off[c];
+    double* Wi = w.soc_winv.data() + w.soc_off[c];
     if (m == 1) {
-      W(0, 0) = std::sqrt(s[o] / z[o]);
-      Wi(0, 0) = 1.0 / W(0, 0);
+      W[0] = std::sqrt(s[o] / z[o]);
+      Wi[0] = 1.0 / W[0];
     } else {
       const auto s1 = s.segment(o + 1, m - 1);
       const auto z1 = z.segment(o + 1, m - 1);
@@ -207,37 +218,52 @@ NtScaling nt_scaling(const ConeDims& k, const VectorXd& s, const VectorXd& z) {
       const double sjs = (s[o] - ns1) * (s[o] + ns1);
       const double zjz = (z[o] - nz1) * (z[o] + nz1);
       const double sn = std::sqrt(sjs), zn = std::sqrt(zjz);
-      VectorXd sb = s.segment(o, m) / sn, zb = z.segment(o, m) / zn;
-      const double gamma = std::sqrt(0.5 * (1.0 + sb.dot(zb)));
-      VectorXd wb(m);  // w̄ = (s̄ + J z̄) / (2γ), the scaling point of the normalised pair
-      wb[0] = (sb[0] + zb[0]) / (2.0 * gamma);
-      wb.tail(m - 1) = (sb.tail(m - 1) - zb.tail(m - 1)) / (2.0 * gamma);
+      // s̄ = s/‖s‖_J, z̄ = z/‖z‖_J; γ = √((1 + s̄ᵀz̄)/2); w̄ = (s̄ + J z̄)/(2γ)
+      double sz = 0.0;
+      for (int i = 0; i < m; ++i) sz += (s[o + i] / sn) * (z[o + i] / zn);
+      const double gamma = std::sqrt(0.5 * (1.0 + sz));
+      wb[0] = (s[o] / sn + z[o] / zn) / (2.0 * gamma);
+      for (int i = 1; i < m; ++i) wb[i] = (s[o + i] / sn - z[o + i] / zn) / (2.0 * gamma);
       const double eta = std::sqrt(sn / zn);
-      // v = (w̄ + e)/√(2(w̄0 + 1)) satisfies P(v)² = P(w̄) (P = quadratic representation);
-      // W = η (2 v vᵀ − J),  W⁻¹ = (1/η)(2 J v vᵀ J − J), and W z = W⁻¹ s.
+      // v = (w̄ + e)/√(2(w̄₀ + 1)); W = η (2 v vᵀ − J), W⁻¹ = (2 (Jv)(Jv)ᵀ − J)/η
       wb[0] += 1.0;
-      wb /= std::sqrt(2.0 * wb[0]);
-      VectorXd jw = wb;
-      jw.tail(m - 1) *= -1.0;
-      Eigen::MatrixXd J = Eigen::MatrixXd::Identity(m, m);
-      J.bottomRightCorner(m - 1, m - 1) *= -1.0;
-      W = eta * (2.0 * wb * wb.transpose() - J);
-      Wi = (2.0 * jw * jw.transpose() - J) / eta;
+      const double scale = std::sqrt(2.0 * wb[0]);
+      for (int i = 0; i < m; ++i) wb[i] /= scale;
+      for (int j = 0; j < m; ++j) {
+        const double jwj = j == 0 ? wb[0] : -wb[j];
+        for (int i = 0; i < m; ++i) {
+          const double jii = i != j ? 0.0 : (i == 0 ? 1.0 : -1.0);
+          const double jwi = i == 0 ? wb[0] : -wb[i];
+          W[static_cast<std::size_t>(j * m + i)] = eta * (2.0 * wb[i] * wb[j] - jii);
+          Wi[static_cast<std::size_t>(j * m + i)] = (2.0 * jwi * jwj - jii) / eta;
+        }
+      }
     }
-    w.soc_w.push_back(std::move(W));
-    w.soc_winv.push_back(std::move(Wi));
     o += m;
   }
   return w;
 }
 
+namespace {
+// r = B v for one m×m column-major block (fixed size for the 3-dimensional cones of limit analysis)
+template <class Out, class In>
+void block_product(const double* B, int m, const In& v, Out&& r) {
+  if (m == 3) {
+    Eigen::Map<Eigen::Vector3d>(r.data()) = Eigen::Map<const Eigen::Matrix3d>(B) * Eigen::Map<const Eigen::Vector3d>(v.data());
+  } else {
+    r = Eigen::Map<const Eigen::MatrixXd>(B, m, m) * v;
+  }
+}
+}  // namespace
+
 VectorXd apply_w(const ConeDims& k, const NtScaling& w, const VectorXd& v, bool inverse) {
   VectorXd r(v.size());
   for (int i = 0; i < k.nonneg; ++i) r[i] = inverse ? v[i] / w.lp_w[i] : v[i] * w.lp_w[i];
   int o = k.nonneg;
+  const std::vector<double>& blocks = inverse ? w.soc_winv : w.soc_w;
   for (std::size_t c = 0; c < k.soc.size(); ++c) {
     const int m = k.soc[c];
-    r.segment(o, m) = (inverse ? w.soc_winv[c] : w.soc_w[c]) * v.segment(o, m);
+    block_product(blocks.data() + w.soc_off[c], m, v.segment(o, m), r.segment(o, m));
     o += m;
   }
   return r;
@@ -337,39 +363,90 @@ public:
   }
 
   bool build_and_factorize(const cone::NtScaling& w, double delta) {
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(static_cast<std::size_t>(n_ + np_ + m_ + p_.A.nonZeros() + p_.G.nonZeros() + 9 * m_));
-    for (int i = 0; i < n_; ++i) t.emplace_back(i, i, delta);
-    for (int j = 0; j < p_.A.outerSize(); ++j) {
-      for (SpMat::InnerIterator it(p_.A, j); it; ++it) t.emplace_back(n_ + it.row(), j, it.value());
-    }
-    for (int i = 0; i < np_; ++i) t.emplace_back(n_ + i, n_ + i, -delta);
-    for (int j = 0; j < p_.G.outerSize(); ++j) {
-      for (SpMat::InnerIterator it(p_.G, j); it; ++it) t.emplace_back(n_ + np_ + it.row(), j, it.value());
-    }
-    const int o0 = n_ + np_;
+    if (!built_) build_pattern();
+    // W² per cone (kept for the exact product) and the values of K that change: the diagonal
+    // (δ, −δ, −w² − δ) and the W² blocks
     const auto& k = p_.cones;
-    for (int i = 0; i < k.nonneg; ++i) {
-      const double wi = w.lp_w[i];
-      t.emplace_back(o0 + i, o0 + i, -wi * wi - delta);
-    }
-    int o = k.nonneg;
+    w2_.resize(w.soc_w.size());
     for (std::size_t c = 0; c < k.soc.size(); ++c) {
       const int m = k.soc[c];
-      const Eigen::MatrixXd w2 = w.soc_w[c] * w.soc_w[c];
+      const double* W = w.soc_w.data() + w.soc_off[c];
+      double* W2 = w2_.data() + w.soc_off[c];
       for (int j = 0; j < m; ++j) {
-        for (int i = j; i < m; ++i) t.emplace_back(o0 + o + i, o0 + o + j, -w2(i, j) - (i == j ? delta : 0.0));
+        for (int i = 0; i < m; ++i) {
+          double acc = 0.0;
+          for (int l = 0; l < m; ++l) acc += W[l * m + i] * W[j * m + l];
+          W2[j * m + i] = acc;
+        }
       }
-      o += m;
     }
-    K_.resize(dim(), dim());
-    K_.setFromTriplets(t.begin(), t.end());
+    double* val = K_.valuePtr();
+    for (int i = 0; i < n_; ++i) val[diag_pos_[static_cast<std::size_t>(i)]] = delta;
+    for (int i = 0; i < np_; ++i) val[diag_pos_[static_cast<std::size_t>(n_ + i)]] = -delta;
+    const int o0 = n_ + np_;
+    for (int i = 0; i < k.nonneg; ++i) {
+      const double wi = w.lp_w[i];
+      val[diag_pos_[static_cast<std::size_t>(o0 + i)]] = -wi * wi - delta;
+    }
+    std::size_t q = 0;
+    for (std::size_t c = 0; c < k.soc.size(); ++c) {
+      const int m = k.soc[c];
+      const double* W2 = w2_.data() + w.soc_off[c];
+      for (int j = 0; j < m; ++j) {
+        for (int i = j; i < m; ++i) val[w2_pos_[q++]] = -W2[j * m + i] - (i == j ? delta : 0.0);
+      }
+    }
     if (!analyzed_) {
       ldlt_->analyze(K_);
       analyzed_ = true;
     }
     const bool ok = ldlt_->factorize(K_);
     return ok;
+  }
+
+  // The pattern of K (lower triangle): fixed for the whole solve; the positions of the entries
+  // that change per iteration are kept.
+  void build_pattern() {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(static_cast<std::size_t>(n_ + np_ + m_ + p_.A.nonZeros() + p_.G.nonZeros() + 9 * m_));
+    for (int i = 0; i < n_; ++i) t.emplace_back(i, i, 1.0);
+    for (int j = 0; j < p_.A.outerSize(); ++j) {
+      for (SpMat::InnerIterator it(p_.A, j); it; ++it) t.emplace_back(n_ + it.row(), j, it.value());
+    }
+    for (int i = 0; i < np_; ++i) t.emplace_back(n_ + i, n_ + i, -1.0);
+    for (int j = 0; j < p_.G.outerSize(); ++j) {
+      for (SpMat::InnerIterator it(p_.G, j); it; ++it) t.emplace_back(n_ + np_ + it.row(), j, it.value());
+    }
+    const int o0 = n_ + np_;
+    const auto& k = p_.cones;
+    for (int i = 0; i < k.nonneg; ++i) t.emplace_back(o0 + i, o0 + i, -1.0);
+    int o = k.nonneg;
+    for (int m : k.soc) {
+      for (int j = 0; j < m; ++j) {
+        for (int i = j; i < m; ++i) t.emplace_back(o0 + o + i, o0 + o + j, -1.0);
+      }
+      o += m;
+    }
+    K_.resize(dim(), dim());
+    K_.setFromTriplets(t.begin(), t.end());
+    K_.makeCompressed();
+    auto position = [&](int i, int j) {
+      const int* first = K_.innerIndexPtr() + K_.outerIndexPtr()[j];
+      const int* last = K_.innerIndexPtr() + K_.outerIndexPtr()[j + 1];
+      const int* at = std::lower_bound(first, last, i);
+      return static_cast<std::size_t>(at - K_.innerIndexPtr());
+    };
+    diag_pos_.resize(static_cast<std::size_t>(dim()));
+    for (int i = 0; i < dim(); ++i) diag_pos_[static_cast<std::size_t>(i)] = position(i, i);
+    w2_pos_.clear();
+    o = k.nonneg;
+    for (int m : k.soc) {
+      for (int j = 0; j < m; ++j) {
+        for (int i = j; i < m; ++i) w2_pos_.push_back(position(o0 + o + i, o0 + o + j));
+      }
+      o += m;
+    }
+    built_ = true;
   }
 
   // Exact (unregularised) KKT product.
@@ -380,10 +457,24 @@ public:
     const auto vz = v.tail(m_);
     r.head(n_) = At_ * vy + Gt_ * vz;
     r.segment(n_, np_) = p_.A * vx;
-    VectorXd wz = cone::apply_w(p_.cones, *w_, cone::apply_w(p_.cones, *w_, vz, false), false);
-    r.tail(m_) = p_.G * vx - wz;
+    auto rz = r.tail(m_);
+    rz = p_.G * vx;
+    const auto& k = p_.cones;
+    for (int i = 0; i < k.nonneg; ++i) rz[i] -= w_->lp_w[i] * w_->lp_w[i] * vz[i];
+    int o = k.nonneg;
+    for (std::size_t c = 0; c < k.soc.size(); ++c) {
+      const int m = k.soc[c];
+      const double* W2 = w2_.data() + w_->soc_off[c];
+      for (int j = 0; j < m; ++j) {
+        for (int i = 0; i < m; ++i) rz[o + i] -= W2[j * m + i] * vz[o + j];
+      }
+      o += m;
+    }
     return r;
   }
+
+  const SpMat& At() const { return At_; }
+  const SpMat& Gt() const { return Gt_; }
 
   VectorXd solve(const VectorXd& rhs, int* steps) const {
     VectorXd x = ldlt_->solve(rhs);
@@ -409,7 +500,9 @@ private:
   double refine_tol_;
   SpMat K_, At_, Gt_;
   std::unique_ptr<LdltBackend> ldlt_;
-  bool analyzed_ = false;
+  bool analyzed_ = false, built_ = false;
+  std::vector<std::size_t> diag_pos_, w2_pos_;  // positions in K_'s values of the diagonal and the W² entries
+  std::vector<double> w2_;                        // W² per cone, laid out as NtScaling::soc_w
   const cone::NtScaling* w_ = nullptr;
 };
 
@@ -494,6 +587,7 @@ SocpResult solve_equilibrated(const SocpProblem& p, const SocpSettings& st) {
   const double nb = std::max({1.0, p.b.size() ? p.b.norm() : 0.0, p.h.size() ? p.h.norm() : 0.0});
   const double nc = std::max(1.0, p.c.norm());
   const VectorXd e = cone::identity(k);
+  const VectorXd tau_column = stack(-p.c, p.b, p.h);  // right-hand side of the τ column, solved every iteration
   struct Saved {
     VectorXd x, y, z, s;
   } best;
@@ -505,8 +599,8 @@ SocpResult solve_equilibrated(const SocpProblem& p, const SocpSettings& st) {
     // residuals of the embedding
     const VectorXd Ax = p.A * x;
     const VectorXd Gx = p.G * x;
-    const VectorXd Aty = p.A.transpose() * y;
-    const VectorXd Gtz = p.G.transpose() * z;
+    const VectorXd Aty = kkt.At() * y;
+    const VectorXd Gtz = kkt.Gt() * z;
     const VectorXd rx = Aty + Gtz + tau * p.c;
     const VectorXd ry = -Ax + tau * p.b;
     const VectorXd rz = -Gx + tau * p.h - s;
@@ -598,7 +692,7 @@ SocpResult solve_equilibrated(const SocpProblem& p, const SocpSettings& st) {
       break;
     }
     VectorXd x1, y1, z1;
-    split(kkt.solve(stack(-p.c, p.b, p.h), nullptr), x1, y1, z1);
+    split(kkt.solve(tau_column, nullptr), x1, y1, z1);
     const double den = kappa / tau - p.c.dot(x1) - p.b.dot(y1) - p.h.dot(z1);
 
     // One Newton direction for a given centring σ and complementarity right-hand sides.

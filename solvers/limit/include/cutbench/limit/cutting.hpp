@@ -34,6 +34,11 @@ struct CuttingSetup {
   // under-relaxation p ← ω p_new + (1 − ω) p of the pressure fixed point: with ω = 1 it oscillates
   // for μ ≥ 1 on the restricted tool (F̄c 2.60–2.67 for 30 steps at μ = 1, n = 6); ω = 0.5 converges
   double coulomb_relaxation = 0.5;
+  // the pressure update (CoulombOptions): Anderson acceleration of depth 5 with mixing 1 (0: the
+  // relaxed iteration above); measured: 5-12 steps where the relaxed iteration takes 12-22 and
+  // 40+ (restricted tool, mu = 1.5, unconverged), solvers/limit/README.md section 3.5
+  int coulomb_anderson_depth = 5;
+  double coulomb_anderson_mixing = 1.0;
   // also run the pressure fixed point at μ = 0, so that the rake contact is unilateral (r_n ≤ 0,
   // separation allowed) after the first step; set by natural_contact_length()
   bool unilateral = false;

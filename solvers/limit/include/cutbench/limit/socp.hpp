@@ -124,9 +124,11 @@ bool strictly_interior(const ConeDims& k, const Eigen::VectorXd& u);
 // Nesterov-Todd scaling point: returns W as a list of dense blocks (1×1 for orthant coordinates
 // gathered in one diagonal vector, m×m per SOC) with W z = W⁻¹ s.
 struct NtScaling {
-  Eigen::VectorXd lp_w;                 // W for the orthant part (diagonal)
-  std::vector<Eigen::MatrixXd> soc_w;   // W per SOC block (symmetric)
-  std::vector<Eigen::MatrixXd> soc_winv;
+  Eigen::VectorXd lp_w;  // W for the orthant part (diagonal)
+  // W and W⁻¹ per SOC block c (symmetric, m×m, column-major) at soc_off[c] of the flat arrays:
+  // one allocation per iteration instead of two per cone
+  std::vector<double> soc_w, soc_winv;
+  std::vector<std::size_t> soc_off;
 };
 NtScaling nt_scaling(const ConeDims& k, const Eigen::VectorXd& s, const Eigen::VectorXd& z);
 Eigen::VectorXd apply_w(const ConeDims& k, const NtScaling& w, const Eigen::VectorXd& v, bool inverse);

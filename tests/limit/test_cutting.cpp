@@ -192,13 +192,7 @@ BOOST_AUTO_TEST_CASE(coulomb_fixed_point_anderson_matches_relaxed) {
   // and Anderson acceleration takes fewer steps. Table 3 chip (t1 = 0.5 mm: mu = 0.4809,
   // phi = 30.4 deg, l = 1.899 t1, n = 6), both iterated to a change of 1e-5 of max p:
   {
-    CuttingSetup c;
-    c.alpha = 6.0 * M_PI / 180;
-    c.mu = 0.4809;
-    c.phi = 30.4 * M_PI / 180;
-    c.contact_length = 1.899;
-    c.n = 6;
-    const LimitModel model = cutting_model(c);
+    const LimitModel model = cutting_model(test::table3_chip_t1_05());
     CoulombOptions relaxed;
     relaxed.relaxation = 0.5;
     relaxed.tol = 1e-5;
@@ -416,12 +410,7 @@ BOOST_AUTO_TEST_CASE(workpiece_block_depth_does_not_matter) {
   // Table 2 conditions (alpha = 6 deg, mu = 0.4809, phi = 30.4 deg, l = 1.899 t1, n = 6): the
   // block stays rigid below the first cell rows, so depth and exit length do not change the
   // solution (measured: F_c bar 3.34471 for depth 0.5-8 and exit length 1-4)
-  CuttingSetup c;
-  c.alpha = 6.0 * M_PI / 180;
-  c.mu = 0.4809;
-  c.phi = 30.4 * M_PI / 180;
-  c.contact_length = 1.899;
-  c.n = 6;
+  CuttingSetup c = test::table3_chip_t1_05();
   c.depth = 1.0;
   const auto a = solve_cutting(c);
   c.depth = 4.0;

@@ -199,10 +199,14 @@ BOOST_AUTO_TEST_CASE(flip_energy_conservation_elastic_vibration) {
                 "audit residual %.3g J/m\n",
                 scheme_name(scheme), e0, emin, emax, ef, 100.0 * drift[scheme], eb.residual);
     BOOST_TEST((emax - emin) / e0 < 0.02);
-    // FLIP, no tool, no damping: the audit's extrapolation loss and residual are the energy lost
+    // FLIP, no tool, no damping: the audit's increment loss and residual are the energy lost
     BOOST_TEST(eb.audit.pic_damping == 0.0);
-    BOOST_TEST(eb.audit.extrapolation_loss >= 0.0);
-    BOOST_TEST(std::fabs(eb.residual + eb.audit.extrapolation_loss - (e0 - ef)) < 1e-9 * e0);
+    BOOST_TEST(eb.audit.increment_loss >= 0.0);
+    BOOST_TEST(std::fabs(eb.residual + eb.audit.increment_loss - (e0 - ef)) < 1e-9 * e0);
+    // USL: the residual is the scheme's own energy drift (measured: residual 0.0131 J/m, drift
+    // 0.0135 J/m of E0 = 2.5, increment loss 0.0004). An audit that counted the loss of the
+    // extrapolation to the grid instead (which a FLIP particle does not suffer) read -0.768 J/m.
+    if (scheme == Scheme::usl) BOOST_TEST(std::fabs(eb.residual) < 0.01 * e0);
   }
   BOOST_TEST(std::fabs(drift[Scheme::usavg]) < std::fabs(drift[Scheme::usl]));
   BOOST_TEST(std::fabs(drift[Scheme::usavg]) < std::fabs(drift[Scheme::musl]));
@@ -211,7 +215,13 @@ BOOST_AUTO_TEST_CASE(flip_energy_conservation_elastic_vibration) {
   const double e0 = pic.kinetic_energy() + pic.strain_energy();
   while (pic.time() < 5.0 * 4.0 * b.L / pic.config().material.p_wave_speed()) pic.step();
   const double ep = pic.kinetic_energy() + pic.strain_energy();
-  std::printf("PIC energy after the same time: %.6g J/m (%.1f%% of E0)\n", ep, 100.0 * ep / e0);
+  const EnergyBalance pb_pic = pic.energy_balance();
+  std::printf("PIC energy after the same time: %.6g J/m (%.1f%% of E0); audit: PIC damping %.4g, increment loss %.4g, "
+              "residual %.4g J/m\n",
+              ep, 100.0 * ep / e0, pb_pic.audit.pic_damping, pb_pic.audit.increment_loss, pb_pic.residual);
+  // the audit closes on the PIC run too (measured: PIC damping 1.023, increment loss 0.015,
+  // residual 0.047 J/m of the 1.085 lost; an audit counting the extrapolation loss instead reads -0.431)
+  BOOST_TEST(std::fabs(pb_pic.residual) < 0.05 * (e0 - ep));
   BOOST_TEST(ep < (1.0 + drift[Scheme::usavg]) * e0);
 }
 

@@ -122,7 +122,7 @@ BOOST_AUTO_TEST_CASE(tiny_run_produces_tables_scalars_snapshots) {
   const auto& sc = out.scalars;
   BOOST_TEST(sc.at("energy_tool_work") > 0.0);
   const double sum = sc.at("energy_kinetic") + sc.at("energy_strain") + sc.at("energy_plastic") + sc.at("energy_cohesive") +
-                     sc.at("energy_pic_damping") + sc.at("energy_feedback_loss") + sc.at("energy_extrapolation_loss") +
+                     sc.at("energy_pic_damping") + sc.at("energy_feedback_loss") + sc.at("energy_increment_loss") +
                      sc.at("energy_residual");
   BOOST_TEST(sum == sc.at("energy_tool_work"), tt::tolerance(1e-9));
   std::printf("tiny run energy audit: tool work %.4g J/m, strain %.4g, plastic %.4g, cohesive %.4g, PIC %.4g, "

@@ -309,7 +309,7 @@ public:
       const EnergyBalance eb = pb_.energy_balance();
       for (auto [v, x] : {std::pair{&e_tool, eb.audit.tool_work}, {&e_kin, eb.kinetic}, {&e_strain, eb.strain},
                           {&e_plastic, eb.plastic}, {&e_coh, eb.cohesive}, {&e_pic, eb.audit.pic_damping},
-                          {&e_fb, eb.audit.feedback_loss}, {&e_ext, eb.audit.extrapolation_loss}, {&e_res, eb.residual}}) {
+                          {&e_fb, eb.audit.feedback_loss}, {&e_inc, eb.audit.increment_loss}, {&e_res, eb.residual}}) {
         v->push_back(x);
       }
       acc_c_ = acc_t_ = acc_nb_ = 0.0;
@@ -334,7 +334,7 @@ public:
   void save(BinaryWriter& w) const override {
     pb_.save_state(w);
     for (const auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph, &e_tool, &e_kin, &e_strain, &e_plastic, &e_coh, &e_pic,
-                          &e_fb, &e_ext, &e_res}) {
+                          &e_fb, &e_inc, &e_res}) {
       w.vec(*v);
     }
     for (double d : {acc_c_, acc_t_, acc_nb_, next_out_, e_at_window_, eI_at_window_}) w.f64(d);
@@ -348,7 +348,7 @@ public:
   void load(BinaryReader& r) override {
     pb_.load_state(r);
     for (auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph, &e_tool, &e_kin, &e_strain, &e_plastic, &e_coh, &e_pic, &e_fb,
-                    &e_ext, &e_res}) {
+                    &e_inc, &e_res}) {
       *v = r.vec();
     }
     for (double* d : {&acc_c_, &acc_t_, &acc_nb_, &next_out_, &e_at_window_, &eI_at_window_}) *d = r.f64();
@@ -366,7 +366,7 @@ public:
 
   std::vector<double> tt, fc, ft, fnb, gap, alph;  // force history (output-interval means)
   // energy audit at the output times (MpmProblem::energy_balance)
-  std::vector<double> e_tool, e_kin, e_strain, e_plastic, e_coh, e_pic, e_fb, e_ext, e_res;
+  std::vector<double> e_tool, e_kin, e_strain, e_plastic, e_coh, e_pic, e_fb, e_inc, e_res;
   std::vector<Snapshot> snapshots;
 
 private:
@@ -468,7 +468,7 @@ void add_histories(RunOutput& out, const CuttingRun& loop) {
   energy.add("cohesive", "J/m", loop.e_coh);
   energy.add("pic_damping", "J/m", loop.e_pic);
   energy.add("feedback_loss", "J/m", loop.e_fb);
-  energy.add("extrapolation_loss", "J/m", loop.e_ext);
+  energy.add("increment_loss", "J/m", loop.e_inc);
   energy.add("residual", "J/m", loop.e_res);
   out.tables.push_back(std::move(energy));
 }
@@ -540,7 +540,7 @@ void add_crack_and_energy(RunOutput& out, const MpmProblem& pb, const CuttingRun
   put("energy_cohesive", eb.cohesive, "J/m");
   put("energy_pic_damping", eb.audit.pic_damping, "J/m");
   put("energy_feedback_loss", eb.audit.feedback_loss, "J/m");
-  put("energy_extrapolation_loss", eb.audit.extrapolation_loss, "J/m");
+  put("energy_increment_loss", eb.audit.increment_loss, "J/m");
   put("energy_residual", eb.residual, "J/m");
   put("energy_residual_fraction", eb.audit.tool_work > 0.0 ? std::fabs(eb.residual) / eb.audit.tool_work : std::nan(""), "1");
 }
@@ -633,7 +633,7 @@ SolverSpec cutting_solver_spec() {
       {"energy_cohesive", Dim::force_per_width, "energy audit: work of the cohesive tractions (J/m)"},
       {"energy_pic_damping", Dim::force_per_width, "energy audit: kinetic energy removed by the PIC damping of the particle update (J/m)"},
       {"energy_feedback_loss", Dim::force_per_width, "energy audit: removed by the feedback damping (J/m)"},
-      {"energy_extrapolation_loss", Dim::force_per_width, "energy audit: kinetic energy lost extrapolating particle momenta to the grid (J/m)"},
+      {"energy_increment_loss", Dim::force_per_width, "energy audit: kinetic energy lost mapping the grid's velocity increments to the particles (J/m)"},
       {"energy_residual", Dim::force_per_width, "energy audit: tool work minus every measured term: the contact's inelastic nodal impacts and the time integration (J/m)"},
       {"energy_residual_fraction", Dim::dimensionless, "|energy_residual| / energy_tool_work"},
       {"particles", Dim::dimensionless, "number of particles"},
@@ -655,7 +655,7 @@ SolverSpec cutting_solver_spec() {
                    {"tip_gap", "m", "gap from the tool tip to the first intact cohesive segment ahead of it"},
                    {"feedback_alpha", "1/s", "grid kinetic-energy feedback damping coefficient"}}},
                  {"energy",
-                  "energy audit at the output times (J/m): tool_work = kinetic + strain + plastic + cohesive + pic_damping + feedback_loss + extrapolation_loss + residual",
+                  "energy audit at the output times (J/m): tool_work = kinetic + strain + plastic + cohesive + pic_damping + feedback_loss + increment_loss + residual",
                   {{"t", "s", "time"},
                    {"tool_work", "J/m", "work of the tool's contact impulses"},
                    {"kinetic", "J/m", "kinetic energy of the material"},
@@ -664,7 +664,7 @@ SolverSpec cutting_solver_spec() {
                    {"cohesive", "J/m", "work of the cohesive tractions"},
                    {"pic_damping", "J/m", "removed by the PIC damping of the particle update"},
                    {"feedback_loss", "J/m", "removed by the feedback damping"},
-                   {"extrapolation_loss", "J/m", "lost extrapolating particle momenta to the grid"},
+                   {"increment_loss", "J/m", "lost mapping the grid's velocity increments to the particles"},
                    {"residual", "J/m", "the balance's remainder: contact impacts and time integration"}}}};
   spec.run = run_cutting;
   spec.checkpoints = true;

@@ -103,6 +103,7 @@ void MpmProblem::setup() {
   for (auto* v : {&Lxx_, &Lxy_, &Lyx_, &Lyy_}) v->assign(avg ? np : 0, 0.0);
   wp_.assign(np, 0.0);
   thread_sum_.assign(static_cast<std::size_t>(nthreads_), 0.0);
+  thread_sum2_.assign(static_cast<std::size_t>(nthreads_), 0.0);
 
   nodes_.assign(kFields * static_cast<std::size_t>(nn_), NodeData{});
   tbuf_.assign(static_cast<std::size_t>(nthreads_), std::vector<NodeData>(nodes_.size(), NodeData{}));
@@ -174,7 +175,7 @@ std::string MpmProblem::fault() const {
 }
 
 namespace {
-constexpr std::uint64_t kStateVersion = 2;
+constexpr std::uint64_t kStateVersion = 3;
 }  // namespace
 
 void MpmProblem::save_state(BinaryWriter& w) const {
@@ -204,7 +205,7 @@ void MpmProblem::save_state(BinaryWriter& w) const {
   w.pods(std::vector<Eigen::Vector2d>{forces_.total, forces_.below, rigid_disp_});
   w.f64(forces_.normal_below);
   w.f64(alpha_fb_);
-  w.vec({audit_.tool_work, audit_.pic_damping, audit_.feedback_loss, audit_.extrapolation_loss});
+  w.vec({audit_.tool_work, audit_.pic_damping, audit_.feedback_loss, audit_.increment_loss});
 }
 
 void MpmProblem::load_state(BinaryReader& r) {
@@ -289,7 +290,7 @@ void MpmProblem::reduce_node_buffers(std::size_t nfield, Add&& add, Store&& stor
   }
 }
 
-void MpmProblem::particles_to_grid(bool with_forces, bool count) {
+void MpmProblem::particles_to_grid(bool with_forces) {
   const long np = static_cast<long>(x_.size());
   std::fill(thread_sum_.begin(), thread_sum_.end(), 0.0);
   const Eigen::Vector2d grav = cfg_.gravity;
@@ -305,7 +306,6 @@ void MpmProblem::particles_to_grid(bool with_forces, bool count) {
 #endif
     std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
     std::fill(buf.begin(), buf.end(), NodeData{});
-    double ke_particles = 0.0;
     if (ext) {  // max for material fields, min for the rigid field
       for (std::size_t i = 0; i < nsz; ++i) {
         const bool rig_field = i >= 2 * static_cast<std::size_t>(nn_);
@@ -321,7 +321,6 @@ void MpmProblem::particles_to_grid(bool with_forces, bool count) {
       }
       const double m = mass_[p];
       const bool rig = rigid_[p] != 0;
-      if (!rig) ke_particles += 0.5 * m * (vx_[p] * vx_[p] + vy_[p] * vy_[p]);
       const double v0 = vol0_[p];
       const double sxx = txx_[p] * v0, sxy = txy_[p] * v0, syy = tyy_[p] * v0;
       // domain extents along the contact normals: far edge of material, near edges of the tool
@@ -370,7 +369,6 @@ void MpmProblem::particles_to_grid(bool with_forces, bool count) {
         }
       }
     }
-    thread_sum_[static_cast<std::size_t>(tid)] = ke_particles;
     // implicit barrier; the rigid field's extents reduce with min, the material fields' with max
     const std::size_t nmat = 2 * static_cast<std::size_t>(nn_);
     reduce_node_buffers(
@@ -392,17 +390,6 @@ void MpmProblem::particles_to_grid(bool with_forces, bool count) {
         [&](std::size_t i, const NodeData& acc) { nodes_[i] = acc; });
   }
   frozen_count_ = frozen;
-  if (!count) return;
-  // the kinetic energy the extrapolation loses: particle minus nodal kinetic energy (never
-  // negative: a node's velocity is the mass-weighted mean of its particles'; nodes lighter than
-  // mmin_, dropped by the grid update, count as lost)
-  double ke_p = 0.0, ke_g = 0.0;
-  for (double e : thread_sum_) ke_p += e;
-  for (std::size_t k = 0; k < 2 * static_cast<std::size_t>(nn_); ++k) {
-    const NodeData& nd = nodes_[k];
-    if (nd.m > mmin_) ke_g += 0.5 * (nd.px * nd.px + nd.py * nd.py) / nd.m;
-  }
-  audit_.extrapolation_loss += ke_p - ke_g;
 }
 
 template <class F>
@@ -665,13 +652,14 @@ void MpmProblem::grid_to_particles() {
   const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
   const auto nnz = static_cast<std::size_t>(nn_);
   std::fill(thread_sum_.begin(), thread_sum_.end(), 0.0);
+  std::fill(thread_sum2_.begin(), thread_sum2_.end(), 0.0);
 #pragma omp parallel num_threads(nthreads_)
   {
   int tid = 0;
 #ifdef _OPENMP
   tid = omp_get_thread_num();
 #endif
-  double pic_damping = 0.0;
+  double pic_damping = 0.0, increment_p = 0.0;
 #pragma omp for schedule(static)
   for (long pl = 0; pl < np; ++pl) {
     const auto p = static_cast<std::size_t>(pl);
@@ -702,6 +690,7 @@ void MpmProblem::grid_to_particles() {
     const Eigen::Vector2d vflip = vp + ag * dt;
     const Eigen::Vector2d vnew = vflip - beta * (vp - vgn);
     pic_damping += 0.5 * mass_[p] * (vflip.squaredNorm() - vnew.squaredNorm());  // removed by the PIC part
+    increment_p += 0.5 * mass_[p] * (ag * dt).squaredNorm();
     Eigen::Vector2d dx;
     if (order == 0) {
       dx = dt * vg;
@@ -719,8 +708,20 @@ void MpmProblem::grid_to_particles() {
     }
   }
   thread_sum_[static_cast<std::size_t>(tid)] = pic_damping;
+  thread_sum2_[static_cast<std::size_t>(tid)] = increment_p;
   }
   for (double e : thread_sum_) audit_.pic_damping += e;
+  // the kinetic energy lost mapping the grid's velocity increments to the particles:
+  // sum_I m_I/2 |dv_I|^2 - sum_p m_p/2 |sum_I S_Ip dv_I|^2 (>= 0, Jensen)
+  {
+    double increment_g = 0.0;
+    for (std::size_t k = 0; k < 2 * nnz; ++k) {
+      if (nodes_[k].m > mmin_) increment_g += 0.5 * nodes_[k].m * (acc_[k] * dt).squaredNorm();
+    }
+    double increment_particles = 0.0;
+    for (double e : thread_sum2_) increment_particles += e;
+    audit_.increment_loss += increment_g - increment_particles;
+  }
   rigid_disp_ += V * dt;
   if (scheme != Numerics::StrainUpdate::musl) return;
   remap_momenta();
@@ -946,7 +947,7 @@ void MpmProblem::step() {
   } else {
     if (!extrapolated_) {  // the first step; else a redo of the last step's extrapolation (counted there)
       const bool count = steps_ == 0;
-      particles_to_grid(false, count);
+      particles_to_grid(false);
       constrain_extrapolated(count, time_);
     }
     usavg_half(true);
@@ -1107,7 +1108,7 @@ EnergyBalance MpmProblem::energy_balance() const {
   b.cohesive = cohesive_energy();
   b.residual = initial_energy_ + audit_.tool_work -
                (b.kinetic + b.strain + b.plastic + b.cohesive + audit_.pic_damping + audit_.feedback_loss +
-                audit_.extrapolation_loss);
+                audit_.increment_loss);
   return b;
 }
 

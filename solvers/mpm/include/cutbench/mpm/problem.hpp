@@ -124,19 +124,25 @@ struct ContactForces {
 };
 
 // The energy audit of a run, J per m of width, accumulated over the steps (save_state carries
-// them). Every term is measured on particles or as momentum times a bounded velocity, never as a
-// grid kinetic energy p^2/2m (unbounded at nodes that hold a sliver of a particle):
-//   tool_work      sum of dp . V_tool over every contact impulse of the tool on the material;
-//   pic_damping    kinetic energy the PIC part of the particle update removes: per particle
-//                  m/2 (|v_FLIP|^2 - |v_new|^2), v_FLIP = v_p + a dt, v_new = v_FLIP - beta (v_p - v_g);
-//   feedback_loss  work of the feedback damping force alpha p at the extrapolated velocity;
-//   extrapolation_loss  particle minus nodal kinetic energy at each extrapolation to the grid
-//                  (>= 0: a nodal velocity is the mass-weighted mean of its particles').
+// them):
+//   tool_work       sum of dp . V_tool over every contact impulse of the tool on the material;
+//   pic_damping     kinetic energy the PIC part of the particle update removes: per particle
+//                   m/2 (|v_FLIP|^2 - |v_new|^2), v_FLIP = v_p + dv_p, v_new = v_FLIP - beta (v_p - v_g);
+//   feedback_loss   work of the feedback damping force alpha p at the extrapolated velocity;
+//   increment_loss  kinetic energy lost mapping the grid's velocity increments to the particles:
+//                   sum_I m_I/2 |dv_I|^2 - sum_p m_p/2 |dv_p|^2, dv_p = sum_I S_Ip dv_I (>= 0), over
+//                   the nodes the grid update keeps (m > mmin).
+// Why these: the particle kinetic energy after an update is exactly
+//   KE_p(n+1) = KE_p(n) + [KE_g(n+1) - KE_g(n)] - increment_loss - pic_damping,
+// because the cross terms sum_p m v_p . dv_p and sum_I m_I v_I . dv_I are equal and the loss of
+// extrapolating v_p to the grid cancels against the FLIP increment (a FLIP particle keeps it).
 // Balance (energy_balance()): initial energy + tool_work = kinetic + strain + plastic + cohesive +
-// pic_damping + feedback_loss + extrapolation_loss + residual. The residual holds what no term
-// measures: the inelastic nodal impacts of the contact and the time integration.
+// pic_damping + feedback_loss + increment_loss + residual. The residual holds what no term
+// measures: the difference between the work of the grid forces at the nodal velocities and the
+// stress power of the constitutive update (the time integration), and the inelastic nodal impacts
+// of the contact.
 struct EnergyAudit {
-  double tool_work = 0.0, pic_damping = 0.0, feedback_loss = 0.0, extrapolation_loss = 0.0;
+  double tool_work = 0.0, pic_damping = 0.0, feedback_loss = 0.0, increment_loss = 0.0;
 };
 
 struct EnergyBalance {
@@ -230,7 +236,7 @@ private:
   int field_of(double xp, double yp, int side_p, double xi, double yi) const;
   bool compute_shape(std::size_t p);  // false: particle frozen (off the grid)
   // Mass, momentum and the rigid body's data (and, with_forces, the grid forces) from the particles.
-  void particles_to_grid(bool with_forces, bool count = true);  // count: add to the energy audit
+  void particles_to_grid(bool with_forces);
   // USAVG: contact (the tool at its velocity at time t) and boundary conditions on the
   // extrapolated momenta (in place), the strain velocities vstrain_ and each particle's velocity
   // gradient (L*_); `count` adds the contact to the energy audit (false where the same
@@ -304,6 +310,7 @@ private:
   std::vector<double> ke_;
   std::vector<Eigen::Vector2d> node_audit_;  // per node: tool work, feedback damping work
   std::vector<double> thread_sum_;           // per-thread partial sums (deterministic order)
+  std::vector<double> thread_sum2_;
   std::vector<double> cohesive_opening_;  // per node column: normal opening of nearest segment
 
   CrackSurface crack_;

@@ -292,7 +292,6 @@ void MpmProblem::reduce_node_buffers(std::size_t nfield, Add&& add, Store&& stor
 
 void MpmProblem::particles_to_grid(bool with_forces) {
   const long np = static_cast<long>(x_.size());
-  std::fill(thread_sum_.begin(), thread_sum_.end(), 0.0);
   const Eigen::Vector2d grav = cfg_.gravity;
   const std::size_t nsz = nodes_.size();
   const bool ext = cfg_.contact.detection == 2;

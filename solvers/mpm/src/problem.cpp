@@ -102,8 +102,7 @@ void MpmProblem::setup() {
   const bool avg = cfg_.numerics.strain_update == Numerics::StrainUpdate::usavg;
   for (auto* v : {&Lxx_, &Lxy_, &Lyx_, &Lyy_}) v->assign(avg ? np : 0, 0.0);
   wp_.assign(np, 0.0);
-  thread_sum_.assign(static_cast<std::size_t>(nthreads_), 0.0);
-  thread_sum2_.assign(static_cast<std::size_t>(nthreads_), 0.0);
+  thread_sum_.assign(static_cast<std::size_t>(nthreads_), Eigen::Vector2d::Zero());
 
   nodes_.assign(kFields * static_cast<std::size_t>(nn_), NodeData{});
   tbuf_.assign(static_cast<std::size_t>(nthreads_), std::vector<NodeData>(nodes_.size(), NodeData{}));
@@ -113,7 +112,7 @@ void MpmProblem::setup() {
   imp_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   imp_below_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   ke_.assign(static_cast<std::size_t>(nn_), 0.0);
-  node_audit_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
+  node_audit_.assign(static_cast<std::size_t>(nn_), Eigen::Vector3d::Zero());
   fixed_.assign(static_cast<std::size_t>(nn_), 0);
   cohesive_opening_.assign(static_cast<std::size_t>(nnx_), 1e30);
   if (cfg_.fixed_mask) {
@@ -543,7 +542,7 @@ void MpmProblem::grid_update() {
     imp_[n] = imp;
     imp_below_[n] = impb;
     // fixed nodes
-    double ke = 0.0;
+    double ke = 0.0, dinc = 0.0;
     for (int f = 0; f < 2; ++f) {
       const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
       if (!has[f]) {
@@ -563,13 +562,14 @@ void MpmProblem::grid_update() {
       vnew_[k] = p[f] / m;
       acc_[k] = (vnew_[k] - vold[f]) / dt;
       ke += 0.5 * m * vnew_[k].squaredNorm();
+      dinc += 0.5 * m * (vnew_[k] - vold[f]).squaredNorm();  // grid side of the increment loss
     }
     ke_[n] = ke;
-    node_audit_[n] = Eigen::Vector2d(imp.dot(V), dfb);
+    node_audit_[n] = Eigen::Vector3d(imp.dot(V), dfb, dinc);
   }
   // deterministic serial sums
   Eigen::Vector2d imp = Eigen::Vector2d::Zero(), impb = Eigen::Vector2d::Zero();
-  Eigen::Vector2d au = Eigen::Vector2d::Zero();
+  Eigen::Vector3d au = Eigen::Vector3d::Zero();
   double ke = 0.0;
   for (std::size_t n = 0; n < nnz; ++n) {
     imp += imp_[n];
@@ -579,6 +579,7 @@ void MpmProblem::grid_update() {
   }
   audit_.tool_work += au[0];
   audit_.feedback_loss += au[1];
+  audit_.increment_loss += au[2];  // less the particles' side, in grid_to_particles
   // the paper's "summing the momentum changes imposed by the contact algorithm on the rigid tool":
   // those of the momentum update only, as NairnMPM sums them (its rigid-contact routine adds the
   // contact force only in the momentum-update pass; the contact on the extrapolated momenta of
@@ -650,8 +651,7 @@ void MpmProblem::grid_to_particles() {
   const auto scheme = cfg_.numerics.strain_update;
   const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
   const auto nnz = static_cast<std::size_t>(nn_);
-  std::fill(thread_sum_.begin(), thread_sum_.end(), 0.0);
-  std::fill(thread_sum2_.begin(), thread_sum2_.end(), 0.0);
+  std::fill(thread_sum_.begin(), thread_sum_.end(), Eigen::Vector2d::Zero());
 #pragma omp parallel num_threads(nthreads_)
   {
   int tid = 0;
@@ -706,20 +706,13 @@ void MpmProblem::grid_to_particles() {
       update_strain(p, velocity_gradient(&wx_[3 * p], &wy_[3 * p], &dwx_[3 * p], &dwy_[3 * p], vnew_, idx), dt);
     }
   }
-  thread_sum_[static_cast<std::size_t>(tid)] = pic_damping;
-  thread_sum2_[static_cast<std::size_t>(tid)] = increment_p;
+  thread_sum_[static_cast<std::size_t>(tid)] = Eigen::Vector2d(pic_damping, increment_p);
   }
-  for (double e : thread_sum_) audit_.pic_damping += e;
-  // the kinetic energy lost mapping the grid's velocity increments to the particles:
-  // sum_I m_I/2 |dv_I|^2 - sum_p m_p/2 |sum_I S_Ip dv_I|^2 (>= 0, Jensen)
-  {
-    double increment_g = 0.0;
-    for (std::size_t k = 0; k < 2 * nnz; ++k) {
-      if (nodes_[k].m > mmin_) increment_g += 0.5 * nodes_[k].m * (acc_[k] * dt).squaredNorm();
-    }
-    double increment_particles = 0.0;
-    for (double e : thread_sum2_) increment_particles += e;
-    audit_.increment_loss += increment_g - increment_particles;
+  // the increment loss sum_I m_I/2 |dv_I|^2 - sum_p m_p/2 |sum_I S_Ip dv_I|^2 (>= 0, Jensen): the
+  // nodes' part is added in grid_update
+  for (const Eigen::Vector2d& e : thread_sum_) {
+    audit_.pic_damping += e[0];
+    audit_.increment_loss -= e[1];
   }
   rigid_disp_ += V * dt;
   if (scheme != Numerics::StrainUpdate::musl) return;
@@ -849,9 +842,9 @@ void MpmProblem::constrain_extrapolated(bool count, double t) {
       nd.px = pm[f].x();
       nd.py = pm[f].y();
     }
-    node_audit_[n] = Eigen::Vector2d(imp.dot(V), 0.0);
+    node_audit_[n] = Eigen::Vector3d(imp.dot(V), 0.0, 0.0);
   }
-  Eigen::Vector2d au = Eigen::Vector2d::Zero();
+  Eigen::Vector3d au = Eigen::Vector3d::Zero();
   for (std::size_t n = 0; n < nnz; ++n) au += node_audit_[n];
   if (count) audit_.tool_work += au[0];
   const long np = static_cast<long>(x_.size());

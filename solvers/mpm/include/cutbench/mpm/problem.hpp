@@ -308,9 +308,8 @@ private:
   std::vector<int> fixed_;
   std::vector<Eigen::Vector2d> imp_, imp_below_;
   std::vector<double> ke_;
-  std::vector<Eigen::Vector2d> node_audit_;  // per node: tool work, feedback damping work
-  std::vector<double> thread_sum_;           // per-thread partial sums (deterministic order)
-  std::vector<double> thread_sum2_;
+  std::vector<Eigen::Vector3d> node_audit_;  // per node: tool work, feedback damping work, grid side of the increment loss
+  std::vector<Eigen::Vector2d> thread_sum_;  // per-thread partial sums (deterministic order): PIC damping, particle side of the increment loss
   std::vector<double> cohesive_opening_;  // per node column: normal opening of nearest segment
 
   CrackSurface crack_;

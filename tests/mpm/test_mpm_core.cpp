@@ -199,14 +199,18 @@ BOOST_AUTO_TEST_CASE(flip_energy_conservation_elastic_vibration) {
                 "audit residual %.3g J/m\n",
                 scheme_name(scheme), e0, emin, emax, ef, 100.0 * drift[scheme], eb.residual);
     BOOST_TEST((emax - emin) / e0 < 0.02);
-    // FLIP, no tool, no damping: the audit's increment loss and residual are the energy lost
+    // FLIP, no tool, no damping: the increment loss, the stress lag (the grid forces' work at
+    // mid-step velocities less the stress power the updates book) and the residual are the energy
+    // lost, as an identity
     BOOST_TEST(eb.audit.pic_damping == 0.0);
     BOOST_TEST(eb.audit.increment_loss >= 0.0);
-    BOOST_TEST(std::fabs(eb.residual + eb.audit.increment_loss - (e0 - ef)) < 1e-9 * e0);
-    // USL: the residual is the scheme's own energy drift (measured: residual 0.0131 J/m, drift
-    // 0.0135 J/m of E0 = 2.5, increment loss 0.0004). An audit that counted the loss of the
-    // extrapolation to the grid instead (which a FLIP particle does not suffer) read -0.768 J/m.
-    if (scheme == Scheme::usl) BOOST_TEST(std::fabs(eb.residual) < 0.01 * e0);
+    BOOST_TEST(std::fabs(eb.residual + eb.audit.increment_loss + eb.stress_lag - (e0 - ef)) < 1e-9 * e0);
+    // the audit attributes the scheme's drift (0.5 % of E0 for USL and MUSL) to its terms: the
+    // residual, the booked stress power less the stored elastic energy, is second order in the step
+    // (measured 8.3e-5 J/m for USL and MUSL, 4.2e-5 for USAVG, of E0 = 2.5). Bound: a fiftieth of
+    // the USL drift. Booking the stress power at the stress before each increment instead leaves
+    // -0.367 J/m (USL): dtau : l / 2 per step, under-booked loading and unloading alike.
+    BOOST_TEST(std::fabs(eb.residual) < 1e-4 * e0);
   }
   BOOST_TEST(std::fabs(drift[Scheme::usavg]) < std::fabs(drift[Scheme::usl]));
   BOOST_TEST(std::fabs(drift[Scheme::usavg]) < std::fabs(drift[Scheme::musl]));
@@ -220,8 +224,9 @@ BOOST_AUTO_TEST_CASE(flip_energy_conservation_elastic_vibration) {
               "residual %.4g J/m\n",
               ep, 100.0 * ep / e0, pb_pic.audit.pic_damping, pb_pic.audit.increment_loss, pb_pic.residual);
   // the audit closes on the PIC run too (measured: PIC damping 1.023, increment loss 0.015,
-  // residual 0.047 J/m of the 1.085 lost; an audit counting the extrapolation loss instead reads -0.431)
-  BOOST_TEST(std::fabs(pb_pic.residual) < 0.05 * (e0 - ep));
+  // residual 7.6e-5 J/m of the 1.085 lost; an audit counting the extrapolation loss instead of the
+  // increment loss reads -0.431)
+  BOOST_TEST(std::fabs(pb_pic.residual) < 1e-3 * (e0 - ep));
   BOOST_TEST(ep < (1.0 + drift[Scheme::usavg]) * e0);
 }
 

@@ -123,7 +123,8 @@ BOOST_AUTO_TEST_CASE(tiny_run_produces_tables_scalars_snapshots) {
   BOOST_TEST(sc.at("energy_tool_work") > 0.0);
   const double sum = sc.at("energy_kinetic") + sc.at("energy_strain") + sc.at("energy_plastic") + sc.at("energy_cohesive") +
                      sc.at("energy_pic_damping") + sc.at("energy_feedback_loss") + sc.at("energy_increment_loss") +
-                     sc.at("energy_residual");
+                     sc.at("energy_tool_contact_loss") + sc.at("energy_crack_contact_loss") +
+                     sc.at("energy_stress_lag") + sc.at("energy_cohesive_lag") + sc.at("energy_residual");
   BOOST_TEST(sum == sc.at("energy_tool_work"), tt::tolerance(1e-9));
   std::printf("tiny run energy audit: tool work %.4g J/m, strain %.4g, plastic %.4g, cohesive %.4g, PIC %.4g, "
               "residual %.4g (%.2f%%)\n",

@@ -59,6 +59,7 @@ MpmProblem build_cutting_problem(const CuttingSetup& s, double* tool_tip_x0) {
   ct.n_below = Eigen::Vector2d(0.0, 1.0);                              // bottom (clearance) face
   ct.gap_factor = s.contact_gap_factor;
   ct.detection = s.contact_detection;
+  ct.tool_contact_first = s.contact_order == 1;
 
   cfg.tool.velocity = Eigen::Vector2d(s.speed, 0.0);
   cfg.tool.t_ramp = s.ramp_fraction * s.total_time;
@@ -196,6 +197,12 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
                            {"domains", "particle domains touch (within contact_gap_factor*dx)"}},
                           "nodal_gap"),
              [](S& s, double v) { s.contact_detection = static_cast<int>(v); })
+        .add(option_param("contact_order", "order of the tool's contact and the crack-face contact at a node",
+                          {{"crack_first", "the crack-face contact, then the tool's contact"},
+                           {"tool_first", "the tool's contact, then the crack-face contact (NairnMPM's order; "
+                                          "multiplies the rubbing force at coarse resolution, FINDINGS F04)"}},
+                          "crack_first"),
+             [](S& s, double v) { s.contact_order = static_cast<int>(v); })
         .bind(param("contact_gap_factor", Dim::dimensionless, "contact distance / tolerance in cells (see contact_detection)",
                     1.0, 0.0, 10.0),
               &S::contact_gap_factor)
@@ -309,7 +316,9 @@ public:
       const EnergyBalance eb = pb_.energy_balance();
       for (auto [v, x] : {std::pair{&e_tool, eb.audit.tool_work}, {&e_kin, eb.kinetic}, {&e_strain, eb.strain},
                           {&e_plastic, eb.plastic}, {&e_coh, eb.cohesive}, {&e_pic, eb.audit.pic_damping},
-                          {&e_fb, eb.audit.feedback_loss}, {&e_inc, eb.audit.increment_loss}, {&e_res, eb.residual}}) {
+                          {&e_fb, eb.audit.feedback_loss}, {&e_inc, eb.audit.increment_loss},
+                          {&e_tcl, eb.audit.tool_contact_loss}, {&e_ccl, eb.audit.crack_contact_loss},
+                          {&e_slag, eb.stress_lag}, {&e_clag, eb.cohesive_lag}, {&e_res, eb.residual}}) {
         v->push_back(x);
       }
       acc_c_ = acc_t_ = acc_nb_ = 0.0;
@@ -334,7 +343,7 @@ public:
   void save(BinaryWriter& w) const override {
     pb_.save_state(w);
     for (const auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph, &e_tool, &e_kin, &e_strain, &e_plastic, &e_coh, &e_pic,
-                          &e_fb, &e_inc, &e_res}) {
+                          &e_fb, &e_inc, &e_tcl, &e_ccl, &e_slag, &e_clag, &e_res}) {
       w.vec(*v);
     }
     for (double d : {acc_c_, acc_t_, acc_nb_, next_out_, e_at_window_, eI_at_window_}) w.f64(d);
@@ -348,7 +357,7 @@ public:
   void load(BinaryReader& r) override {
     pb_.load_state(r);
     for (auto* v : {&tt, &fc, &ft, &fnb, &gap, &alph, &e_tool, &e_kin, &e_strain, &e_plastic, &e_coh, &e_pic, &e_fb,
-                    &e_inc, &e_res}) {
+                    &e_inc, &e_tcl, &e_ccl, &e_slag, &e_clag, &e_res}) {
       *v = r.vec();
     }
     for (double* d : {&acc_c_, &acc_t_, &acc_nb_, &next_out_, &e_at_window_, &eI_at_window_}) *d = r.f64();
@@ -366,7 +375,7 @@ public:
 
   std::vector<double> tt, fc, ft, fnb, gap, alph;  // force history (output-interval means)
   // energy audit at the output times (MpmProblem::energy_balance)
-  std::vector<double> e_tool, e_kin, e_strain, e_plastic, e_coh, e_pic, e_fb, e_inc, e_res;
+  std::vector<double> e_tool, e_kin, e_strain, e_plastic, e_coh, e_pic, e_fb, e_inc, e_tcl, e_ccl, e_slag, e_clag, e_res;
   std::vector<Snapshot> snapshots;
 
 private:
@@ -469,6 +478,10 @@ void add_histories(RunOutput& out, const CuttingRun& loop) {
   energy.add("pic_damping", "J/m", loop.e_pic);
   energy.add("feedback_loss", "J/m", loop.e_fb);
   energy.add("increment_loss", "J/m", loop.e_inc);
+  energy.add("tool_contact_loss", "J/m", loop.e_tcl);
+  energy.add("crack_contact_loss", "J/m", loop.e_ccl);
+  energy.add("stress_lag", "J/m", loop.e_slag);
+  energy.add("cohesive_lag", "J/m", loop.e_clag);
   energy.add("residual", "J/m", loop.e_res);
   out.tables.push_back(std::move(energy));
 }
@@ -541,8 +554,15 @@ void add_crack_and_energy(RunOutput& out, const MpmProblem& pb, const CuttingRun
   put("energy_pic_damping", eb.audit.pic_damping, "J/m");
   put("energy_feedback_loss", eb.audit.feedback_loss, "J/m");
   put("energy_increment_loss", eb.audit.increment_loss, "J/m");
+  put("energy_tool_contact_loss", eb.audit.tool_contact_loss, "J/m");
+  put("energy_crack_contact_loss", eb.audit.crack_contact_loss, "J/m");
+  put("energy_stress_lag", eb.stress_lag, "J/m");
+  put("energy_cohesive_lag", eb.cohesive_lag, "J/m");
   put("energy_residual", eb.residual, "J/m");
   put("energy_residual_fraction", eb.audit.tool_work > 0.0 ? std::fabs(eb.residual) / eb.audit.tool_work : std::nan(""), "1");
+  const double numerical = eb.audit.pic_damping + eb.audit.feedback_loss + eb.audit.increment_loss +
+                           eb.audit.tool_contact_loss + eb.audit.crack_contact_loss + eb.stress_lag + eb.cohesive_lag;
+  put("energy_numerical_fraction", eb.audit.tool_work > 0.0 ? numerical / eb.audit.tool_work : std::nan(""), "1");
 }
 }  // namespace
 
@@ -634,8 +654,13 @@ SolverSpec cutting_solver_spec() {
       {"energy_pic_damping", Dim::force_per_width, "energy audit: kinetic energy removed by the PIC damping of the particle update (J/m)"},
       {"energy_feedback_loss", Dim::force_per_width, "energy audit: removed by the feedback damping (J/m)"},
       {"energy_increment_loss", Dim::force_per_width, "energy audit: kinetic energy lost mapping the grid's velocity increments to the particles (J/m)"},
-      {"energy_residual", Dim::force_per_width, "energy audit: tool work minus every measured term: the contact's inelastic nodal impacts and the time integration (J/m)"},
+      {"energy_tool_contact_loss", Dim::force_per_width, "energy audit: tool work the nodal contact does not pass to the material, sum dp . (V_tool - v_mid) (J/m; < 0: the contact gives more)"},
+      {"energy_crack_contact_loss", Dim::force_per_width, "energy audit: removed by the crack-face contact, -sum dp . v_mid (J/m; < 0: created)"},
+      {"energy_stress_lag", Dim::force_per_width, "energy audit: work the stresses' nodal forces take from the grid at mid-step velocities less the stress power the stress updates book (J/m)"},
+      {"energy_cohesive_lag", Dim::force_per_width, "energy audit: work the cohesive forces take from the grid at mid-step velocities less the cohesive energy booked (J/m)"},
+      {"energy_residual", Dim::force_per_width, "energy audit: tool work minus every measured term: the stress updates' booked stress power less the elastic and plastic energy they store, and what the scheme's extra passes do (MUSL, USAVG) (J/m)"},
       {"energy_residual_fraction", Dim::dimensionless, "|energy_residual| / energy_tool_work"},
+      {"energy_numerical_fraction", Dim::dimensionless, "share of the tool work taken by the numerical terms (PIC and feedback damping, increment loss, contact losses, stress and cohesive lags; signed)"},
       {"particles", Dim::dimensionless, "number of particles"},
       {"steps", Dim::dimensionless, "time steps"},
       {"dt", Dim::time, "time step"},
@@ -655,7 +680,7 @@ SolverSpec cutting_solver_spec() {
                    {"tip_gap", "m", "gap from the tool tip to the first intact cohesive segment ahead of it"},
                    {"feedback_alpha", "1/s", "grid kinetic-energy feedback damping coefficient"}}},
                  {"energy",
-                  "energy audit at the output times (J/m): tool_work = kinetic + strain + plastic + cohesive + pic_damping + feedback_loss + increment_loss + residual",
+                  "energy audit at the output times (J/m): tool_work = kinetic + strain + plastic + cohesive + pic_damping + feedback_loss + increment_loss + tool_contact_loss + crack_contact_loss + stress_lag + cohesive_lag + residual",
                   {{"t", "s", "time"},
                    {"tool_work", "J/m", "work of the tool's contact impulses"},
                    {"kinetic", "J/m", "kinetic energy of the material"},
@@ -665,7 +690,11 @@ SolverSpec cutting_solver_spec() {
                    {"pic_damping", "J/m", "removed by the PIC damping of the particle update"},
                    {"feedback_loss", "J/m", "removed by the feedback damping"},
                    {"increment_loss", "J/m", "lost mapping the grid's velocity increments to the particles"},
-                   {"residual", "J/m", "the balance's remainder: contact impacts and time integration"}}}};
+                   {"tool_contact_loss", "J/m", "tool work the nodal contact does not pass to the material"},
+                   {"crack_contact_loss", "J/m", "removed by the crack-face contact (< 0: created)"},
+                   {"stress_lag", "J/m", "internal forces' work at mid-step velocities less the booked stress power"},
+                   {"cohesive_lag", "J/m", "cohesive forces' work at mid-step velocities less the booked cohesive energy"},
+                   {"residual", "J/m", "the balance's remainder: booked stress power less stored elastic and plastic energy"}}}};
   spec.run = run_cutting;
   spec.checkpoints = true;
   spec.footprint = [](const Values& v) {

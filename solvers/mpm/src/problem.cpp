@@ -102,6 +102,7 @@ void MpmProblem::setup() {
   const bool avg = cfg_.numerics.strain_update == Numerics::StrainUpdate::usavg;
   for (auto* v : {&Lxx_, &Lxy_, &Lyx_, &Lyy_}) v->assign(avg ? np : 0, 0.0);
   wp_.assign(np, 0.0);
+  sp_.assign(np, 0.0);
   thread_sum_.assign(static_cast<std::size_t>(nthreads_), Eigen::Vector2d::Zero());
 
   nodes_.assign(kFields * static_cast<std::size_t>(nn_), NodeData{});
@@ -112,7 +113,9 @@ void MpmProblem::setup() {
   imp_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   imp_below_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   ke_.assign(static_cast<std::size_t>(nn_), 0.0);
-  node_audit_.assign(static_cast<std::size_t>(nn_), Eigen::Vector3d::Zero());
+  node_audit_.assign(static_cast<std::size_t>(nn_), std::array<double, 7>{});
+  fcoh_.assign(2 * static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
+  fcoh_nodes_.clear();
   fixed_.assign(static_cast<std::size_t>(nn_), 0);
   cohesive_opening_.assign(static_cast<std::size_t>(nnx_), 1e30);
   if (cfg_.fixed_mask) {
@@ -144,6 +147,7 @@ void MpmProblem::setup() {
   }
   setup_done_ = true;
   if (cfg_.numerics.sort_interval > 0) sort_particles();
+  fcoh_nodes_.reserve(18 * crack_.xc.size() + 1);  // two points a segment, nine nodes each: no allocation in step()
   initial_energy_ = kinetic_energy() + strain_energy();
 }
 
@@ -174,7 +178,7 @@ std::string MpmProblem::fault() const {
 }
 
 namespace {
-constexpr std::uint64_t kStateVersion = 3;
+constexpr std::uint64_t kStateVersion = 4;
 }  // namespace
 
 void MpmProblem::save_state(BinaryWriter& w) const {
@@ -184,7 +188,7 @@ void MpmProblem::save_state(BinaryWriter& w) const {
   w.u64(static_cast<std::uint64_t>(steps_));
   w.u64(static_cast<std::uint64_t>(frozen_count_));
   for (const auto* v : {&x_, &y_, &X0_, &Y0_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_,
-                        &bxx_, &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_}) {
+                        &bxx_, &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_, &sp_}) {
     w.vec(*v);
   }
   for (const auto* v : {&rigid_, &side_, &frozen_}) w.pods(*v);
@@ -204,7 +208,8 @@ void MpmProblem::save_state(BinaryWriter& w) const {
   w.pods(std::vector<Eigen::Vector2d>{forces_.total, forces_.below, rigid_disp_});
   w.f64(forces_.normal_below);
   w.f64(alpha_fb_);
-  w.vec({audit_.tool_work, audit_.pic_damping, audit_.feedback_loss, audit_.increment_loss});
+  w.vec({audit_.tool_work, audit_.pic_damping, audit_.feedback_loss, audit_.increment_loss, audit_.tool_contact_loss,
+         audit_.crack_contact_loss, audit_.internal_work, audit_.cohesive_work});
 }
 
 void MpmProblem::load_state(BinaryReader& r) {
@@ -220,7 +225,7 @@ void MpmProblem::load_state(BinaryReader& r) {
     return v;
   };
   for (auto* v : {&x_, &y_, &X0_, &Y0_, &vx_, &vy_, &mass_, &vol0_, &J_, &alpha_, &Fxx_, &Fxy_, &Fyx_, &Fyy_, &bxx_,
-                  &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_}) {
+                  &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_, &sp_}) {
     *v = sized(r.vec(), np, "a particle field");
   }
   for (auto* v : {&rigid_, &side_, &frozen_}) *v = sized(r.pods<std::uint8_t>(), np, "a particle flag");
@@ -244,8 +249,8 @@ void MpmProblem::load_state(BinaryReader& r) {
   rigid_disp_ = vecs[2];
   forces_.normal_below = r.f64();
   alpha_fb_ = r.f64();
-  const auto a = sized(r.vec(), 4, "the energy audit");
-  audit_ = EnergyAudit{a[0], a[1], a[2], a[3]};
+  const auto a = sized(r.vec(), 8, "the energy audit");
+  audit_ = EnergyAudit{a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7]};
   extrapolated_ = false;  // the next step extrapolates the loaded particles afresh
 }
 
@@ -448,13 +453,15 @@ void MpmProblem::cohesive_forces() {
         const double share = s * nodes_[kk].m / wsum;
         nodes_[kk].fx += fvec.x() * share;
         nodes_[kk].fy += fvec.y() * share;
+        if (fcoh_[kk].x() == 0.0 && fcoh_[kk].y() == 0.0) fcoh_nodes_.push_back(kk);
+        fcoh_[kk] += fvec * share;  // for the audit's cohesive work
       });
     }
   }
 }
 
 void MpmProblem::resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const bool has[2], const Eigen::Vector2d& V,
-                                  Eigen::Vector2d& imp, Eigen::Vector2d& impb) const {
+                                  Eigen::Vector2d& imp, Eigen::Vector2d& impb, Eigen::Vector2d dp_crack[2]) const {
   const double dt = dt_;
   const auto& ct = cfg_.contact;
   const double gapmax = ct.gap_factor * cfg_.grid.dx;
@@ -465,50 +472,57 @@ void MpmProblem::resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const boo
   const int node_side = (!crack || yn > cfg_.crack.y) ? 1 : 0;
   imp.setZero();
   impb.setZero();
-    // crack contact (frictionless) between the two sides when the crack is closed
-    if (crack && has[0] && has[1]) {
-      const int fa = node_side == 1 ? 0 : 1;  // field holding material from above the crack
-      const int fb = 1 - fa;
-      const double ma = nodes_[static_cast<std::size_t>(fa) * nnz + n].m;
-      const double mb = nodes_[static_cast<std::size_t>(fb) * nnz + n].m;
-      const double vrel = p[fa].y() / ma - p[fb].y() / mb;
-      if (cohesive_opening_[static_cast<std::size_t>(i)] + vrel * dt < 0.0) {
-        const double vcm = (p[fa].y() + p[fb].y()) / (ma + mb);
-        p[fa].y() = ma * vcm;
-        p[fb].y() = mb * vcm;
-      }
+  dp_crack[0].setZero();
+  dp_crack[1].setZero();
+  // crack contact (frictionless) between the two sides when the crack is closed
+  auto crack_contact = [&]() {
+    if (!crack || !has[0] || !has[1]) return;
+    const int fa = node_side == 1 ? 0 : 1;  // field holding material from above the crack
+    const int fb = 1 - fa;
+    const double ma = nodes_[static_cast<std::size_t>(fa) * nnz + n].m;
+    const double mb = nodes_[static_cast<std::size_t>(fb) * nnz + n].m;
+    const double vrel = p[fa].y() / ma - p[fb].y() / mb;
+    if (cohesive_opening_[static_cast<std::size_t>(i)] + vrel * dt < 0.0) {
+      const double vcm = (p[fa].y() + p[fb].y()) / (ma + mb);
+      dp_crack[fa].y() = ma * vcm - p[fa].y();
+      dp_crack[fb].y() = mb * vcm - p[fb].y();
+      p[fa].y() = ma * vcm;
+      p[fb].y() = mb * vcm;
     }
-    // rigid-body contact with prescribed normals
-    const NodeData& rd = nodes_[kRigid * nnz + n];
-    if (rd.m > mmin_) {
-      const Eigen::Vector2d cr(rd.mx / rd.m, rd.my / rd.m);
-      for (int f = 0; f < 2; ++f) {
-        if (!has[f]) continue;
-        const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
-        const int mat_side = f == 0 ? node_side : 1 - node_side;
-        const Eigen::Vector2d& nrm = mat_side == 1 ? ct.n_above : ct.n_below;
-        if (ct.detection == 1 && gapmax > 0.0) {
-          const Eigen::Vector2d cm(nd.mx / nd.m, nd.my / nd.m);
-          if ((cr - cm).dot(nrm) > gapmax) continue;
-        } else if (ct.detection == 2) {
-          const double tool_edge = mat_side == 1 ? rd.e0 : rd.e1;
-          if (nd.e0 < tool_edge - gapmax) continue;  // domains apart
-        }
-        const Eigen::Vector2d dv = p[f] / nd.m - V;
-        const double dvn = dv.dot(nrm);
-        if (dvn <= 0.0) continue;
-        Eigen::Vector2d dp = -nd.m * dvn * nrm;
-        const Eigen::Vector2d vt = dv - dvn * nrm;
-        const double vtn = vt.norm();
-        if (vtn > 0.0) {
-          const double fric = std::min(ct.mu * nd.m * dvn, nd.m * vtn);
-          dp -= fric * vt / vtn;
-        }
-        p[f] += dp;
-        imp += dp;
-        if (mat_side == 0) impb += dp;
+  };
+  if (!ct.tool_contact_first) crack_contact();
+  // rigid-body contact with prescribed normals
+  const NodeData& rd = nodes_[kRigid * nnz + n];
+  if (rd.m > mmin_) {
+    const Eigen::Vector2d cr(rd.mx / rd.m, rd.my / rd.m);
+    for (int f = 0; f < 2; ++f) {
+      if (!has[f]) continue;
+      const NodeData& nd = nodes_[static_cast<std::size_t>(f) * nnz + n];
+      const int mat_side = f == 0 ? node_side : 1 - node_side;
+      const Eigen::Vector2d& nrm = mat_side == 1 ? ct.n_above : ct.n_below;
+      if (ct.detection == 1 && gapmax > 0.0) {
+        const Eigen::Vector2d cm(nd.mx / nd.m, nd.my / nd.m);
+        if ((cr - cm).dot(nrm) > gapmax) continue;
+      } else if (ct.detection == 2) {
+        const double tool_edge = mat_side == 1 ? rd.e0 : rd.e1;
+        if (nd.e0 < tool_edge - gapmax) continue;  // domains apart
       }
+      const Eigen::Vector2d dv = p[f] / nd.m - V;
+      const double dvn = dv.dot(nrm);
+      if (dvn <= 0.0) continue;
+      Eigen::Vector2d dp = -nd.m * dvn * nrm;
+      const Eigen::Vector2d vt = dv - dvn * nrm;
+      const double vtn = vt.norm();
+      if (vtn > 0.0) {
+        const double fric = std::min(ct.mu * nd.m * dvn, nd.m * vtn);
+        dp -= fric * vt / vtn;
+      }
+      p[f] += dp;
+      imp += dp;
+      if (mat_side == 0) impb += dp;
     }
+  }
+  if (ct.tool_contact_first) crack_contact();
 }
 
 void MpmProblem::grid_update() {
@@ -537,12 +551,14 @@ void MpmProblem::grid_update() {
       p[f] = Eigen::Vector2d(nd.px + (nd.fx - alpha * nd.px) * dt, nd.py + (nd.fy - alpha * nd.py) * dt);
       dfb += alpha * dt * (nd.px * nd.px + nd.py * nd.py) / nd.m;
     }
-    Eigen::Vector2d imp, impb;
-    resolve_contacts(n, p, has, V, imp, impb);
+    // impulses other than the contacts' (forces, damping), for the audit's split by impulse
+    const Eigen::Vector2d p_forces[2] = {p[0], p[1]};
+    Eigen::Vector2d imp, impb, dpc[2];
+    resolve_contacts(n, p, has, V, imp, impb, dpc);
     imp_[n] = imp;
     imp_below_[n] = impb;
     // fixed nodes
-    double ke = 0.0, dinc = 0.0;
+    double ke = 0.0, dinc = 0.0, tool_loss = 0.0, crack_loss = 0.0, wint = 0.0, wcoh = 0.0;
     for (int f = 0; f < 2; ++f) {
       const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
       if (!has[f]) {
@@ -563,23 +579,42 @@ void MpmProblem::grid_update() {
       acc_[k] = (vnew_[k] - vold[f]) / dt;
       ke += 0.5 * m * vnew_[k].squaredNorm();
       dinc += 0.5 * m * (vnew_[k] - vold[f]).squaredNorm();  // grid side of the increment loss
+      // the step's impulses at the mean velocity (fixed components do no work: both zeroed)
+      Eigen::Vector2d vmid = 0.5 * (vnew_[k] + vold[f]);
+      if (fm & 1) vmid.x() = 0.0;
+      if (fm & 2) vmid.y() = 0.0;
+      Eigen::Vector2d dp_tool = p[f] - p_forces[f] - dpc[f];
+      if (fm & 1) dp_tool.x() = 0.0;
+      if (fm & 2) dp_tool.y() = 0.0;
+      const NodeData& nd = nodes_[k];
+      const Eigen::Vector2d fint = Eigen::Vector2d(nd.fx, nd.fy) - fcoh_[k] - m * cfg_.gravity;
+      tool_loss += dp_tool.dot(V - vmid);
+      crack_loss -= dpc[f].dot(vmid);
+      wint -= dt * fint.dot(vmid);
+      wcoh -= dt * fcoh_[k].dot(vmid);
     }
     ke_[n] = ke;
-    node_audit_[n] = Eigen::Vector3d(imp.dot(V), dfb, dinc);
+    node_audit_[n] = {imp.dot(V), dfb, dinc, tool_loss, crack_loss, wint, wcoh};
   }
   // deterministic serial sums
   Eigen::Vector2d imp = Eigen::Vector2d::Zero(), impb = Eigen::Vector2d::Zero();
-  Eigen::Vector3d au = Eigen::Vector3d::Zero();
+  std::array<double, 7> au{};
   double ke = 0.0;
   for (std::size_t n = 0; n < nnz; ++n) {
     imp += imp_[n];
     impb += imp_below_[n];
     ke += ke_[n];
-    au += node_audit_[n];
+    for (std::size_t q = 0; q < au.size(); ++q) au[q] += node_audit_[n][q];
   }
   audit_.tool_work += au[0];
   audit_.feedback_loss += au[1];
   audit_.increment_loss += au[2];  // less the particles' side, in grid_to_particles
+  audit_.tool_contact_loss += au[3];
+  audit_.crack_contact_loss += au[4];
+  audit_.internal_work += au[5];
+  audit_.cohesive_work += au[6];
+  for (const std::size_t k : fcoh_nodes_) fcoh_[k].setZero();
+  fcoh_nodes_.clear();
   // the paper's "summing the momentum changes imposed by the contact algorithm on the rigid tool":
   // those of the momentum update only, as NairnMPM sums them (its rigid-contact routine adds the
   // contact force only in the momentum-update pass; the contact on the extrapolated momenta of
@@ -599,6 +634,11 @@ void MpmProblem::grid_update() {
 
 void MpmProblem::update_strain(std::size_t p, const Eigen::Matrix2d& L, double h) {
   const Eigen::Matrix2d l = L * h;
+  // stress power booked over the increment at the mean of the stresses before and after it (the
+  // hyperelastic energy change to second order; the stress at the start alone under-books by
+  // dtau : l / 2 in every step, loading or unloading)
+  const double lsym01 = l(0, 1) + l(1, 0);
+  const double power_n = txx_[p] * l(0, 0) + tyy_[p] * l(1, 1) + txy_[p] * lsym01;
   const double F00 = Fxx_[p], F01 = Fxy_[p], F10 = Fyx_[p], F11 = Fyy_[p];
   Fxx_[p] = F00 + l(0, 0) * F00 + l(0, 1) * F10;
   Fxy_[p] = F01 + l(0, 0) * F01 + l(0, 1) * F11;
@@ -620,6 +660,7 @@ void MpmProblem::update_strain(std::size_t p, const Eigen::Matrix2d& L, double h
   txy_[p] = tau[1];
   tyy_[p] = tau[2];
   tzz_[p] = tau[3];
+  sp_[p] += 0.5 * vol0_[p] * (power_n + tau[0] * l(0, 0) + tau[2] * l(1, 1) + tau[1] * lsym01);
 }
 
 namespace {
@@ -740,7 +781,8 @@ void MpmProblem::constrained_velocities(std::size_t n, const Eigen::Vector2d& V,
   }
   imp.setZero();
   impb.setZero();
-  if (contact) resolve_contacts(n, pm, has, V, imp, impb);
+  Eigen::Vector2d dpc[2];
+  if (contact) resolve_contacts(n, pm, has, V, imp, impb, dpc);
   const int fm = fixed_[n];
   for (int f = 0; f < 2; ++f) {
     const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
@@ -842,11 +884,11 @@ void MpmProblem::constrain_extrapolated(bool count, double t) {
       nd.px = pm[f].x();
       nd.py = pm[f].y();
     }
-    node_audit_[n] = Eigen::Vector3d(imp.dot(V), 0.0, 0.0);
+    node_audit_[n] = {imp.dot(V), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   }
-  Eigen::Vector3d au = Eigen::Vector3d::Zero();
-  for (std::size_t n = 0; n < nnz; ++n) au += node_audit_[n];
-  if (count) audit_.tool_work += au[0];
+  double au = 0.0;
+  for (std::size_t n = 0; n < nnz; ++n) au += node_audit_[n][0];
+  if (count) audit_.tool_work += au;
   const long np = static_cast<long>(x_.size());
 #pragma omp parallel for schedule(static) num_threads(nthreads_)
   for (long pl = 0; pl < np; ++pl) {
@@ -1091,6 +1133,12 @@ double MpmProblem::plastic_work() const {
   return e;
 }
 
+double MpmProblem::stress_power() const {
+  double e = 0.0;
+  for (std::size_t p = 0; p < x_.size(); ++p) e += sp_[p];
+  return e;
+}
+
 EnergyBalance MpmProblem::energy_balance() const {
   EnergyBalance b;
   b.audit = audit_;
@@ -1098,9 +1146,13 @@ EnergyBalance MpmProblem::energy_balance() const {
   b.strain = strain_energy();
   b.plastic = plastic_work();
   b.cohesive = cohesive_energy();
+  b.stress_power = stress_power();
+  b.stress_lag = audit_.internal_work - b.stress_power;
+  b.cohesive_lag = audit_.cohesive_work - b.cohesive;
   b.residual = initial_energy_ + audit_.tool_work -
                (b.kinetic + b.strain + b.plastic + b.cohesive + audit_.pic_damping + audit_.feedback_loss +
-                audit_.increment_loss);
+                audit_.increment_loss + audit_.tool_contact_loss + audit_.crack_contact_loss + b.stress_lag +
+                b.cohesive_lag);
   return b;
 }
 

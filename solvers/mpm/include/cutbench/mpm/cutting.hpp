@@ -29,6 +29,7 @@ struct CuttingSetup {
   Numerics numerics;
   double contact_gap_factor = 1.0;
   int contact_detection = 1;
+  int contact_order = 0;             // 0: crack-face contact, then the tool's; 1: the reverse (NairnMPM's order)
   double crack_offset = 0.02;        // crack line this fraction of a cell below the node row
 };
 

@@ -12,6 +12,7 @@
 // Threading: OpenMP over particles (per-thread node buffers reduced in thread order) and over
 // nodes. For a fixed thread count, results are bitwise reproducible. No allocation in step().
 #include <Eigen/Dense>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -72,6 +73,11 @@ struct ContactSpec {
   //      domain's far edge along n  >=  min over the rigid particles of their near edge
   //      - gap_factor * dx (gap_factor is then a tolerance; 0 = exact touching).
   int detection = 1;
+  // Order of the two contacts at a node: false applies the crack-face contact first and the tool's
+  // impulses on the result; true the tool's first, NairnMPM's order (UpdateMomentaTask::
+  // ContactAndMomentaBCs: material contact, then crack contact), which here multiplies the rubbing
+  // force at coarse resolution (FINDINGS F04, nairn2015).
+  bool tool_contact_first = false;
   double gap_factor = 1.0;
 };
 
@@ -124,25 +130,34 @@ struct ContactForces {
 };
 
 // The energy audit of a run, J per m of width, accumulated over the steps (save_state carries
-// them):
-//   tool_work       sum of dp . V_tool over every contact impulse of the tool on the material;
-//   pic_damping     kinetic energy the PIC part of the particle update removes: per particle
-//                   m/2 (|v_FLIP|^2 - |v_new|^2), v_FLIP = v_p + dv_p, v_new = v_FLIP - beta (v_p - v_g);
-//   feedback_loss   work of the feedback damping force alpha p at the extrapolated velocity;
-//   increment_loss  kinetic energy lost mapping the grid's velocity increments to the particles:
-//                   sum_I m_I/2 |dv_I|^2 - sum_p m_p/2 |dv_p|^2, dv_p = sum_I S_Ip dv_I (>= 0), over
-//                   the nodes the grid update keeps (m > mmin).
-// Why these: the particle kinetic energy after an update is exactly
-//   KE_p(n+1) = KE_p(n) + [KE_g(n+1) - KE_g(n)] - increment_loss - pic_damping,
-// because the cross terms sum_p m v_p . dv_p and sum_I m_I v_I . dv_I are equal and the loss of
-// extrapolating v_p to the grid cancels against the FLIP increment (a FLIP particle keeps it).
-// Balance (energy_balance()): initial energy + tool_work = kinetic + strain + plastic + cohesive +
-// pic_damping + feedback_loss + increment_loss + residual. The residual holds what no term
-// measures: the difference between the work of the grid forces at the nodal velocities and the
-// stress power of the constitutive update (the time integration), and the inelastic nodal impacts
-// of the contact.
+// them). Nodal terms are over the nodes the grid update keeps (m > mmin), with v_mid = (v_old +
+// v_new)/2 the mean of a node's velocity before and after the step's momentum update:
+//   tool_work          sum of dp . V_tool over every contact impulse of the tool on the material;
+//   pic_damping        kinetic energy the PIC part of the particle update removes: per particle
+//                      m/2 (|v_FLIP|^2 - |v_new|^2), v_FLIP = v_p + dv_p, v_new = v_FLIP - beta (v_p - v_g);
+//   feedback_loss      work of the feedback damping force alpha p at the extrapolated velocity;
+//   increment_loss     kinetic energy lost mapping the grid's velocity increments to the particles:
+//                      sum_I m_I/2 |dv_I|^2 - sum_p m_p/2 |dv_p|^2, dv_p = sum_I S_Ip dv_I (>= 0);
+//   tool_contact_loss  sum of dp . (V_tool - v_mid) over the tool's contact impulses: the part of
+//                      tool_work the nodal contact does not pass to the material (inelastic nodal
+//                      impacts when > 0; the contact gives more than dp . V_tool when < 0);
+//   crack_contact_loss -sum of dp . v_mid over the crack-face contact impulses (momentum-neutral);
+//   internal_work      -dt sum_I f_int,I . v_mid,I: what the stresses' nodal forces take from the grid;
+//   cohesive_work      -dt sum_I f_coh,I . v_mid,I: what the cohesive forces take from the grid.
+// Why these: the momentum update changes the grid kinetic energy by exactly sum_I dp_I . v_mid,I
+// over every impulse (forces, damping, contacts), and the particle kinetic energy after the update
+// is exactly KE_p(n+1) = KE_p(n) + [KE_g(n+1) - KE_g(n)] - increment_loss - pic_damping (the cross
+// terms sum_p m v_p . dv_p and sum_I m_I v_I . dv_I are equal, and the loss of extrapolating v_p to
+// the grid cancels against the FLIP increment). Two further terms of EnergyBalance compare what the
+// grid's forces deliver with what the models book: stress_lag (internal_work less the stress power
+// the stress updates book; the explicit scheme's lag between the forces' work and the strain
+// increment it uses) and cohesive_lag (cohesive_work less the cohesive energy the traction law
+// books). What is left, the residual, is the stress updates' booked stress power less the elastic
+// and plastic energy they store (second order in the step), plus, for MUSL and USAVG, what their
+// extra passes over the grid do that no term measures.
 struct EnergyAudit {
   double tool_work = 0.0, pic_damping = 0.0, feedback_loss = 0.0, increment_loss = 0.0;
+  double tool_contact_loss = 0.0, crack_contact_loss = 0.0, internal_work = 0.0, cohesive_work = 0.0;
 };
 
 struct EnergyBalance {
@@ -151,7 +166,14 @@ struct EnergyBalance {
   double strain = 0.0;    // stored elastic energy
   double plastic = 0.0;   // plastic work (dissipated, hardening included)
   double cohesive = 0.0;  // work of the cohesive tractions (failed segments: J_I + J_II; intact: to the present opening)
-  double residual = 0.0;  // initial energy + tool_work minus every other term
+  double stress_power = 0.0;  // booked by the stress updates: sum over updates of V0 (tau_n + tau_n+1)/2 : l (l = L h)
+  double stress_lag = 0.0;    // audit.internal_work - stress_power
+  double cohesive_lag = 0.0;  // audit.cohesive_work - cohesive
+  // initial energy + tool_work minus every other term (kinetic, strain, plastic, cohesive, the
+  // audit's losses, stress_lag, cohesive_lag): the stress updates' booked stress power less the
+  // elastic and plastic energies they store, plus what the scheme's extra passes (MUSL's re-mapped
+  // momenta, USAVG's extrapolations) do that no term measures
+  double residual = 0.0;
 };
 
 struct CrackSurface {
@@ -194,6 +216,7 @@ public:
   double mode1_fraction() const;    // sum J_I len / sum (J_I + J_II) len over failed segments
   double cohesive_energy() const;   // J/m, work done on the cohesive segments so far (EnergyBalance)
   double plastic_work() const;      // J/m, deformable particles
+  double stress_power() const;      // J/m, booked by the stress updates (EnergyBalance)
   EnergyBalance energy_balance() const;
   // Empty while the state is sound; else what went wrong, naming the particle: a non-finite
   // position, velocity or stress, or a particle that left the grid (a blow-up).
@@ -262,7 +285,7 @@ private:
                               Eigen::Vector2d& imp, Eigen::Vector2d& impb);
   void update_strain(std::size_t p, const Eigen::Matrix2d& L, double h);  // over a time h
   void resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const bool has[2], const Eigen::Vector2d& V,
-                        Eigen::Vector2d& imp, Eigen::Vector2d& impb) const;
+                        Eigen::Vector2d& imp, Eigen::Vector2d& impb, Eigen::Vector2d dp_crack[2]) const;
   void move_crack_surfaces();
   void sort_particles();
   Eigen::Vector2d field_velocity(const Eigen::Vector2d& pt, int side) const;
@@ -287,6 +310,7 @@ private:
   std::vector<double> bxx_, bxy_, byy_, bzz_;  // isochoric elastic left Cauchy-Green
   std::vector<double> txx_, txy_, tyy_, tzz_;  // Kirchhoff stress
   std::vector<double> wp_;                     // plastic work per particle, J/m
+  std::vector<double> sp_;                     // stress power booked per particle, J/m
   std::vector<double> Lxx_, Lxy_, Lyx_, Lyy_;  // USAVG: the velocity gradient of the extrapolation
   std::vector<std::uint8_t> rigid_, side_, frozen_;
   std::vector<std::size_t> id_;
@@ -308,7 +332,11 @@ private:
   std::vector<int> fixed_;
   std::vector<Eigen::Vector2d> imp_, imp_below_;
   std::vector<double> ke_;
-  std::vector<Eigen::Vector3d> node_audit_;  // per node: tool work, feedback damping work, grid side of the increment loss
+  // per node: tool work, feedback damping work, grid side of the increment loss, tool contact loss,
+  // crack contact loss, internal work, cohesive work
+  std::vector<std::array<double, 7>> node_audit_;
+  std::vector<Eigen::Vector2d> fcoh_;        // per material-field node: this step's cohesive force
+  std::vector<std::size_t> fcoh_nodes_;      // the entries of fcoh_ this step set
   std::vector<Eigen::Vector2d> thread_sum_;  // per-thread partial sums (deterministic order): PIC damping, particle side of the increment loss
   std::vector<double> cohesive_opening_;  // per node column: normal opening of nearest segment
 

@@ -113,7 +113,7 @@ void MpmProblem::setup() {
   imp_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   imp_below_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   ke_.assign(static_cast<std::size_t>(nn_), 0.0);
-  node_audit_.assign(static_cast<std::size_t>(nn_), std::array<double, 7>{});
+  node_audit_.assign(static_cast<std::size_t>(nn_), std::array<double, 6>{});
   fcoh_.assign(2 * static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   fcoh_nodes_.clear();
   fixed_.assign(static_cast<std::size_t>(nn_), 0);
@@ -529,6 +529,7 @@ void MpmProblem::grid_update() {
   const double dt = dt_;
   const double alpha = alpha_fb_;
   const Eigen::Vector2d V = cfg_.tool.at(time_ + dt);
+  const Eigen::Vector2d grav = cfg_.gravity;
   const auto& ct = cfg_.contact;
   const auto nnz = static_cast<std::size_t>(nn_);
 #pragma omp parallel for schedule(static) num_threads(nthreads_)
@@ -558,7 +559,7 @@ void MpmProblem::grid_update() {
     imp_[n] = imp;
     imp_below_[n] = impb;
     // fixed nodes
-    double ke = 0.0, dinc = 0.0, tool_loss = 0.0, crack_loss = 0.0, wint = 0.0, wcoh = 0.0;
+    double ke = 0.0, dinc = 0.0, tool_loss = 0.0, crack_loss = 0.0, wforces = 0.0;
     for (int f = 0; f < 2; ++f) {
       const std::size_t k = static_cast<std::size_t>(f) * nnz + n;
       if (!has[f]) {
@@ -577,28 +578,28 @@ void MpmProblem::grid_update() {
       const double m = nodes_[k].m;
       vnew_[k] = p[f] / m;
       acc_[k] = (vnew_[k] - vold[f]) / dt;
-      ke += 0.5 * m * vnew_[k].squaredNorm();
+      const double vn2 = vnew_[k].squaredNorm();
+      ke += 0.5 * m * vn2;
       dinc += 0.5 * m * (vnew_[k] - vold[f]).squaredNorm();  // grid side of the increment loss
-      // the step's impulses at the mean velocity (fixed components do no work: both zeroed)
-      Eigen::Vector2d vmid = 0.5 * (vnew_[k] + vold[f]);
-      if (fm & 1) vmid.x() = 0.0;
-      if (fm & 2) vmid.y() = 0.0;
+      // The step's impulses at the mean velocity (fixed components are zero in both velocities, so
+      // their reactions do no work). All of them together: m/2 (|v_new|^2 - |v_old|^2); less the
+      // contacts' and the damping's, the grid forces' dt (f_int + f_coh + m g) . v_mid.
+      const Eigen::Vector2d vmid = 0.5 * (vnew_[k] + vold[f]);
       Eigen::Vector2d dp_tool = p[f] - p_forces[f] - dpc[f];
       if (fm & 1) dp_tool.x() = 0.0;
       if (fm & 2) dp_tool.y() = 0.0;
-      const NodeData& nd = nodes_[k];
-      const Eigen::Vector2d fint = Eigen::Vector2d(nd.fx, nd.fy) - fcoh_[k] - m * cfg_.gravity;
       tool_loss += dp_tool.dot(V - vmid);
       crack_loss -= dpc[f].dot(vmid);
-      wint -= dt * fint.dot(vmid);
-      wcoh -= dt * fcoh_[k].dot(vmid);
+      const NodeData& nd = nodes_[k];
+      wforces += 0.5 * m * (vn2 - vold[f].squaredNorm()) - (dp_tool + dpc[f]).dot(vmid) +
+                 alpha * dt * Eigen::Vector2d(nd.px, nd.py).dot(vmid) - dt * m * grav.dot(vmid);
     }
     ke_[n] = ke;
-    node_audit_[n] = {imp.dot(V), dfb, dinc, tool_loss, crack_loss, wint, wcoh};
+    node_audit_[n] = {imp.dot(V), dfb, dinc, tool_loss, crack_loss, wforces};
   }
   // deterministic serial sums
   Eigen::Vector2d imp = Eigen::Vector2d::Zero(), impb = Eigen::Vector2d::Zero();
-  std::array<double, 7> au{};
+  std::array<double, 6> au{};
   double ke = 0.0;
   for (std::size_t n = 0; n < nnz; ++n) {
     imp += imp_[n];
@@ -611,10 +612,17 @@ void MpmProblem::grid_update() {
   audit_.increment_loss += au[2];  // less the particles' side, in grid_to_particles
   audit_.tool_contact_loss += au[3];
   audit_.crack_contact_loss += au[4];
-  audit_.internal_work += au[5];
-  audit_.cohesive_work += au[6];
-  for (const std::size_t k : fcoh_nodes_) fcoh_[k].setZero();
+  // the cohesive forces' work at the mean velocities, over the nodes they act on (a node listed
+  // twice counts once: its entry is cleared after use); the internal forces' is the grid forces'
+  // less it
+  double wcoh = 0.0;
+  for (const std::size_t k : fcoh_nodes_) {
+    if (nodes_[k].m > mmin_) wcoh -= dt * fcoh_[k].dot(vnew_[k] - 0.5 * dt * acc_[k]);
+    fcoh_[k].setZero();
+  }
   fcoh_nodes_.clear();
+  audit_.cohesive_work += wcoh;
+  audit_.internal_work += -au[5] - wcoh;
   // the paper's "summing the momentum changes imposed by the contact algorithm on the rigid tool":
   // those of the momentum update only, as NairnMPM sums them (its rigid-contact routine adds the
   // contact force only in the momentum-update pass; the contact on the extrapolated momenta of
@@ -884,7 +892,7 @@ void MpmProblem::constrain_extrapolated(bool count, double t) {
       nd.px = pm[f].x();
       nd.py = pm[f].y();
     }
-    node_audit_[n] = {imp.dot(V), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    node_audit_[n] = {imp.dot(V), 0.0, 0.0, 0.0, 0.0, 0.0};
   }
   double au = 0.0;
   for (std::size_t n = 0; n < nnz; ++n) au += node_audit_[n][0];

@@ -333,8 +333,8 @@ private:
   std::vector<Eigen::Vector2d> imp_, imp_below_;
   std::vector<double> ke_;
   // per node: tool work, feedback damping work, grid side of the increment loss, tool contact loss,
-  // crack contact loss, internal work, cohesive work
-  std::vector<std::array<double, 7>> node_audit_;
+  // crack contact loss, work of the grid forces (internal, cohesive, gravity) at v_mid
+  std::vector<std::array<double, 6>> node_audit_;
   std::vector<Eigen::Vector2d> fcoh_;        // per material-field node: this step's cohesive force
   std::vector<std::size_t> fcoh_nodes_;      // the entries of fcoh_ this step set
   std::vector<Eigen::Vector2d> thread_sum_;  // per-thread partial sums (deterministic order): PIC damping, particle side of the increment loss

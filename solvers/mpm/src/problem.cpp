@@ -110,10 +110,7 @@ void MpmProblem::setup() {
   vnew_.assign(nodes_.size(), Eigen::Vector2d::Zero());
   acc_.assign(nodes_.size(), Eigen::Vector2d::Zero());
   vstrain_.assign(nodes_.size(), Eigen::Vector2d::Zero());
-  imp_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
-  imp_below_.assign(static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
-  ke_.assign(static_cast<std::size_t>(nn_), 0.0);
-  node_audit_.assign(static_cast<std::size_t>(nn_), std::array<double, 6>{});
+  grid_sums_.assign(static_cast<std::size_t>(nthreads_), GridSums{});
   fcoh_.assign(2 * static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
   fcoh_nodes_.clear();
   fixed_.assign(static_cast<std::size_t>(nn_), 0);
@@ -532,7 +529,16 @@ void MpmProblem::grid_update() {
   const Eigen::Vector2d grav = cfg_.gravity;
   const auto& ct = cfg_.contact;
   const auto nnz = static_cast<std::size_t>(nn_);
-#pragma omp parallel for schedule(static) num_threads(nthreads_)
+  // sums over the nodes: per thread over its static block in node order, then over the threads in
+  // order (deterministic for a thread count; with one thread the plain node-order sum)
+#pragma omp parallel num_threads(nthreads_)
+  {
+  int tid = 0;
+#ifdef _OPENMP
+  tid = omp_get_thread_num();
+#endif
+  GridSums loc;
+#pragma omp for schedule(static)
   for (long nl = 0; nl < nn_; ++nl) {
     const auto n = static_cast<std::size_t>(nl);
     Eigen::Vector2d vold[2], p[2];
@@ -556,8 +562,8 @@ void MpmProblem::grid_update() {
     const Eigen::Vector2d p_forces[2] = {p[0], p[1]};
     Eigen::Vector2d imp, impb, dpc[2];
     resolve_contacts(n, p, has, V, imp, impb, dpc);
-    imp_[n] = imp;
-    imp_below_[n] = impb;
+    loc.imp += imp;
+    loc.impb += impb;
     // fixed nodes
     double ke = 0.0, dinc = 0.0, tool_loss = 0.0, crack_loss = 0.0, wforces = 0.0;
     for (int f = 0; f < 2; ++f) {
@@ -594,19 +600,22 @@ void MpmProblem::grid_update() {
       wforces += 0.5 * m * (vn2 - vold[f].squaredNorm()) - (dp_tool + dpc[f]).dot(vmid) +
                  alpha * dt * Eigen::Vector2d(nd.px, nd.py).dot(vmid) - dt * m * grav.dot(vmid);
     }
-    ke_[n] = ke;
-    node_audit_[n] = {imp.dot(V), dfb, dinc, tool_loss, crack_loss, wforces};
+    loc.ke += ke;
+    const double node_audit[6] = {imp.dot(V), dfb, dinc, tool_loss, crack_loss, wforces};
+    for (std::size_t q = 0; q < loc.au.size(); ++q) loc.au[q] += node_audit[q];
   }
-  // deterministic serial sums
-  Eigen::Vector2d imp = Eigen::Vector2d::Zero(), impb = Eigen::Vector2d::Zero();
-  std::array<double, 6> au{};
-  double ke = 0.0;
-  for (std::size_t n = 0; n < nnz; ++n) {
-    imp += imp_[n];
-    impb += imp_below_[n];
-    ke += ke_[n];
-    for (std::size_t q = 0; q < au.size(); ++q) au[q] += node_audit_[n][q];
+  grid_sums_[static_cast<std::size_t>(tid)] = loc;
   }
+  GridSums tot;
+  for (const GridSums& g : grid_sums_) {
+    tot.imp += g.imp;
+    tot.impb += g.impb;
+    tot.ke += g.ke;
+    for (std::size_t q = 0; q < tot.au.size(); ++q) tot.au[q] += g.au[q];
+  }
+  const Eigen::Vector2d imp = tot.imp, impb = tot.impb;
+  const double ke = tot.ke;
+  const std::array<double, 6>& au = tot.au;
   audit_.tool_work += au[0];
   audit_.feedback_loss += au[1];
   audit_.increment_loss += au[2];  // less the particles' side, in grid_to_particles
@@ -881,7 +890,14 @@ void MpmProblem::constrain_extrapolated(bool count, double t) {
   if (cfg_.crack.enabled) update_crack_openings();
   const Eigen::Vector2d V = cfg_.tool.at(t);
   const auto nnz = static_cast<std::size_t>(nn_);
-#pragma omp parallel for schedule(static) num_threads(nthreads_)
+#pragma omp parallel num_threads(nthreads_)
+  {
+  int tid = 0;
+#ifdef _OPENMP
+  tid = omp_get_thread_num();
+#endif
+  GridSums loc;
+#pragma omp for schedule(static)
   for (long nl = 0; nl < nn_; ++nl) {
     const auto n = static_cast<std::size_t>(nl);
     Eigen::Vector2d pm[2], imp, impb;
@@ -892,10 +908,12 @@ void MpmProblem::constrain_extrapolated(bool count, double t) {
       nd.px = pm[f].x();
       nd.py = pm[f].y();
     }
-    node_audit_[n] = {imp.dot(V), 0.0, 0.0, 0.0, 0.0, 0.0};
+    loc.au[0] += imp.dot(V);
+  }
+  grid_sums_[static_cast<std::size_t>(tid)] = loc;
   }
   double au = 0.0;
-  for (std::size_t n = 0; n < nnz; ++n) au += node_audit_[n][0];
+  for (const GridSums& g : grid_sums_) au += g.au[0];
   if (count) audit_.tool_work += au;
   const long np = static_cast<long>(x_.size());
 #pragma omp parallel for schedule(static) num_threads(nthreads_)

@@ -330,11 +330,16 @@ private:
   std::vector<std::vector<NodeData>> tbuf_;
   std::vector<Eigen::Vector2d> vnew_, acc_, vstrain_;
   std::vector<int> fixed_;
-  std::vector<Eigen::Vector2d> imp_, imp_below_;
-  std::vector<double> ke_;
-  // per node: tool work, feedback damping work, grid side of the increment loss, tool contact loss,
-  // crack contact loss, work of the grid forces (internal, cohesive, gravity) at v_mid
-  std::vector<std::array<double, 6>> node_audit_;
+  // per-thread sums of the grid update over the nodes: the tool's impulse (all, below the crack),
+  // grid kinetic energy, and the audit's tool work, feedback damping work, grid side of the
+  // increment loss, tool contact loss, crack contact loss, work of the grid forces (internal,
+  // cohesive, gravity) at v_mid
+  struct GridSums {
+    Eigen::Vector2d imp = Eigen::Vector2d::Zero(), impb = Eigen::Vector2d::Zero();
+    double ke = 0.0;
+    std::array<double, 6> au{};
+  };
+  std::vector<GridSums> grid_sums_;
   std::vector<Eigen::Vector2d> fcoh_;        // per material-field node: this step's cohesive force
   std::vector<std::size_t> fcoh_nodes_;      // the entries of fcoh_ this step set
   std::vector<Eigen::Vector2d> thread_sum_;  // per-thread partial sums (deterministic order): PIC damping, particle side of the increment loss

@@ -15,6 +15,14 @@
 namespace cutbench::mpm {
 
 namespace {
+// this thread's number inside a parallel region (0 without OpenMP)
+inline int thread_id() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
 constexpr int kFields = 3;
 constexpr std::uint8_t kRigid = 2;
 constexpr double kHuge = 1e300;
@@ -300,10 +308,7 @@ void MpmProblem::particles_to_grid(bool with_forces) {
   long frozen = 0;
 #pragma omp parallel num_threads(nthreads_)
   {
-    int tid = 0;
-#ifdef _OPENMP
-    tid = omp_get_thread_num();
-#endif
+    const int tid = thread_id();
     std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
     std::fill(buf.begin(), buf.end(), NodeData{});
     if (ext) {  // max for material fields, min for the rigid field
@@ -533,10 +538,7 @@ void MpmProblem::grid_update() {
   // order (deterministic for a thread count; with one thread the plain node-order sum)
 #pragma omp parallel num_threads(nthreads_)
   {
-  int tid = 0;
-#ifdef _OPENMP
-  tid = omp_get_thread_num();
-#endif
+  const int tid = thread_id();
   GridSums loc;
 #pragma omp for schedule(static)
   for (long nl = 0; nl < nn_; ++nl) {
@@ -712,10 +714,7 @@ void MpmProblem::grid_to_particles() {
   std::fill(thread_sum_.begin(), thread_sum_.end(), Eigen::Vector2d::Zero());
 #pragma omp parallel num_threads(nthreads_)
   {
-  int tid = 0;
-#ifdef _OPENMP
-  tid = omp_get_thread_num();
-#endif
+  const int tid = thread_id();
   double pic_damping = 0.0, increment_p = 0.0;
 #pragma omp for schedule(static)
   for (long pl = 0; pl < np; ++pl) {
@@ -820,10 +819,7 @@ void MpmProblem::remap_momenta() {
   const long nfield = 2 * static_cast<long>(nnz);
 #pragma omp parallel num_threads(nthreads_)
   {
-    int tid = 0;
-#ifdef _OPENMP
-    tid = omp_get_thread_num();
-#endif
+    const int tid = thread_id();
     std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
     for (long i = 0; i < nfield; ++i) {
       buf[static_cast<std::size_t>(i)].px = 0.0;
@@ -892,10 +888,7 @@ void MpmProblem::constrain_extrapolated(bool count, double t) {
   const auto nnz = static_cast<std::size_t>(nn_);
 #pragma omp parallel num_threads(nthreads_)
   {
-  int tid = 0;
-#ifdef _OPENMP
-  tid = omp_get_thread_num();
-#endif
+  const int tid = thread_id();
   GridSums loc;
 #pragma omp for schedule(static)
   for (long nl = 0; nl < nn_; ++nl) {
@@ -951,10 +944,7 @@ void MpmProblem::usavg_half(bool first) {
   const std::size_t nfield = 2 * static_cast<std::size_t>(nn_);
 #pragma omp parallel num_threads(nthreads_)
   {
-    int tid = 0;
-#ifdef _OPENMP
-    tid = omp_get_thread_num();
-#endif
+    const int tid = thread_id();
     std::vector<NodeData>& buf = tbuf_[static_cast<std::size_t>(tid)];
     for (std::size_t i = 0; i < nfield; ++i) buf[i].fx = buf[i].fy = 0.0;
 #pragma omp for schedule(static)

@@ -119,8 +119,7 @@ void MpmProblem::setup() {
   acc_.assign(nodes_.size(), Eigen::Vector2d::Zero());
   vstrain_.assign(nodes_.size(), Eigen::Vector2d::Zero());
   grid_sums_.assign(static_cast<std::size_t>(nthreads_), GridSums{});
-  fcoh_.assign(2 * static_cast<std::size_t>(nn_), Eigen::Vector2d::Zero());
-  fcoh_nodes_.clear();
+  coh_impulses_.clear();
   fixed_.assign(static_cast<std::size_t>(nn_), 0);
   cohesive_opening_.assign(static_cast<std::size_t>(nnx_), 1e30);
   if (cfg_.fixed_mask) {
@@ -152,7 +151,7 @@ void MpmProblem::setup() {
   }
   setup_done_ = true;
   if (cfg_.numerics.sort_interval > 0) sort_particles();
-  fcoh_nodes_.reserve(18 * crack_.xc.size() + 1);  // two points a segment, nine nodes each: no allocation in step()
+  coh_impulses_.reserve(18 * crack_.xc.size() + 1);  // two points a segment, nine nodes each: no allocation in step()
   initial_energy_ = kinetic_energy() + strain_energy();
 }
 
@@ -455,8 +454,7 @@ void MpmProblem::cohesive_forces() {
         const double share = s * nodes_[kk].m / wsum;
         nodes_[kk].fx += fvec.x() * share;
         nodes_[kk].fy += fvec.y() * share;
-        if (fcoh_[kk].x() == 0.0 && fcoh_[kk].y() == 0.0) fcoh_nodes_.push_back(kk);
-        fcoh_[kk] += fvec * share;  // for the audit's cohesive work
+        coh_impulses_.emplace_back(kk, fvec * share);  // for the audit's cohesive work
       });
     }
   }
@@ -623,15 +621,13 @@ void MpmProblem::grid_update() {
   audit_.increment_loss += au[2];  // less the particles' side, in grid_to_particles
   audit_.tool_contact_loss += au[3];
   audit_.crack_contact_loss += au[4];
-  // the cohesive forces' work at the mean velocities, over the nodes they act on (a node listed
-  // twice counts once: its entry is cleared after use); the internal forces' is the grid forces'
-  // less it
+  // the cohesive forces' work at the mean velocities of the nodes they act on; the internal
+  // forces' is the grid forces' less it
   double wcoh = 0.0;
-  for (const std::size_t k : fcoh_nodes_) {
-    if (nodes_[k].m > mmin_) wcoh -= dt * fcoh_[k].dot(vnew_[k] - 0.5 * dt * acc_[k]);
-    fcoh_[k].setZero();
+  for (const auto& [k, fc] : coh_impulses_) {
+    if (nodes_[k].m > mmin_) wcoh -= dt * fc.dot(vnew_[k] - 0.5 * dt * acc_[k]);
   }
-  fcoh_nodes_.clear();
+  coh_impulses_.clear();
   audit_.cohesive_work += wcoh;
   audit_.internal_work += -au[5] - wcoh;
   // the paper's "summing the momentum changes imposed by the contact algorithm on the rigid tool":

@@ -17,6 +17,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cutbench/common/binary_io.hpp"
@@ -340,8 +341,7 @@ private:
     std::array<double, 6> au{};
   };
   std::vector<GridSums> grid_sums_;
-  std::vector<Eigen::Vector2d> fcoh_;        // per material-field node: this step's cohesive force
-  std::vector<std::size_t> fcoh_nodes_;      // the entries of fcoh_ this step set
+  std::vector<std::pair<std::size_t, Eigen::Vector2d>> coh_impulses_;  // this step's cohesive forces: (node field, force)
   std::vector<Eigen::Vector2d> thread_sum_;  // per-thread partial sums (deterministic order): PIC damping, particle side of the increment loss
   std::vector<double> cohesive_opening_;  // per node column: normal opening of nearest segment
 

@@ -329,6 +329,28 @@ BOOST_AUTO_TEST_CASE(stick_length_interpolates_the_threshold_crossing) {
   BOOST_TEST(r.stick_length_fraction == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(tau_plateau_ends_are_interpolated_level_crossings) {
+  // |tau| of the field: 0.5, 0.95, 1.0 (maximum at s = 0.4), 0.92, 0.6, 0.5 at s = 0, 0.2, ..., 1.
+  // Level 0.9: before the maximum the crossing lies between s = 0 and 0.2, at 0.2 (0.4 / 0.45) =
+  // 0.17778; after it between s = 0.6 and 0.8, at 0.6 + 0.2 (0.02 / 0.32) = 0.6125.
+  CuttingResult r;
+  r.s = {0.0, 0.2, 0.4, 0.6, 0.8, 1.0};
+  r.slip = std::vector<double>(6, 1.0);
+  r.sigma_n = std::vector<double>(6, -1.0);
+  r.tau = std::vector<double>(6, 0.5);
+  r.tau_field = {-0.5, -0.95, -1.0, -0.92, -0.6, -0.5};
+  r.trib = {0.1, 0.2, 0.2, 0.2, 0.2, 0.1};
+  contact_statistics(r, std::numeric_limits<double>::infinity());
+  BOOST_TEST(kTauPlateauLevel == 0.9);
+  BOOST_TEST(std::abs(r.tau_plateau_start - 0.2 * 0.4 / 0.45) < 1e-12);
+  BOOST_TEST(std::abs(r.tau_drop - 0.6125) < 1e-12);
+  // truncated at l_max = 0.6: no fall below the level after the maximum, so the plateau runs to the
+  // end of the contact
+  contact_statistics(r, 0.6);
+  BOOST_TEST(r.tau_drop == 1.0);
+  BOOST_TEST(std::abs(r.tau_plateau_start - 0.2 * 0.4 / 0.45 / 0.6) < 1e-12);
+}
+
 BOOST_AUTO_TEST_CASE(chip_back_stream_angle_eta1) {
   // η1 (paper Fig. 5): the chip back over the contact runs from S to D1 = S + l (r − tan η1 n_r).
   // (1) The fluxes still add up to the inflow (the back over the contact, the turned free chip and

@@ -235,6 +235,35 @@ void contact_statistics(CuttingResult& res, double l_max) {
     const double len = std::isfinite(l_max) ? std::min(l_max, last) : last;
     res.stick_length_fraction = len > 0.0 ? (crossed ? end / len : 1.0) : 0.0;
   }
+  // the tangential-stress plateau and its drop, from the field traction (when the profile has it)
+  if (res.tau_field.size() == res.s.size()) {
+    std::size_t n = 0, imax = 0;
+    while (n < res.s.size() && res.s[n] <= l_max * (1.0 + 1e-12)) ++n;
+    for (std::size_t i = 0; i < n; ++i)
+      if (std::abs(res.tau_field[i]) > std::abs(res.tau_field[imax])) imax = i;
+    const double level = kTauPlateauLevel * (n > 0 ? std::abs(res.tau_field[imax]) : 0.0);
+    // s where |tau| crosses the level between points a (at or above it) and b (below it)
+    auto crossing = [&](std::size_t a, std::size_t b) {
+      const double ta = std::abs(res.tau_field[a]), tb = std::abs(res.tau_field[b]);
+      return res.s[a] + (ta - level) / (ta - tb) * (res.s[b] - res.s[a]);
+    };
+    double start = 0.0, drop = n > 0 ? res.s[n - 1] : 0.0;
+    for (std::size_t i = imax + 1; i < n; ++i) {
+      if (std::abs(res.tau_field[i]) < level) {
+        drop = crossing(i - 1, i);
+        break;
+      }
+    }
+    for (std::size_t i = imax; i-- > 0;) {
+      if (std::abs(res.tau_field[i]) < level) {
+        start = crossing(i + 1, i);
+        break;
+      }
+    }
+    const double len = n > 0 ? res.s[n - 1] : 0.0;
+    res.tau_plateau_start = len > 0.0 ? start / len : 0.0;
+    res.tau_drop = len > 0.0 ? drop / len : 1.0;
+  }
   res.mu_sticking = st_n > 0.0 ? st_t / st_n : nan;
   res.mu_sliding = sl_n > 0.0 ? sl_t / sl_n : nan;
   res.mu_app = std::abs(Fn) > 0.0 ? std::abs(Ft) / std::abs(Fn) : nan;
@@ -373,7 +402,7 @@ CuttingResult adapt_cutting(const CuttingSetup& c, const AdaptOptions& opt, std:
   std::vector<CuttingAdaptStep> refinement;
   for (int step = 0;; ++step) {
     CuttingResult r = solve_cutting_on(cutting_model_on_mesh(mesh, c), c, settings);
-    refinement.push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.mu_sticking, r.stick_length_fraction});
+    refinement.push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.stick_length_fraction});
     if (history) history->push_back(refinement.back());
     if (step == opt.steps) {
       r.refinement = std::move(refinement);

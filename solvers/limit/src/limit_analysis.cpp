@@ -362,7 +362,6 @@ LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings
     const double change = f.cwiseAbs().maxCoeff() / std::max(1e-12, g.cwiseAbs().maxCoeff());
     rep.iterations = it;
     rep.change = change;
-    rep.change_history.push_back(change);
     rep.collapse_history.push_back(sol.collapse);
     if (change < opt.tol) {
       rep.converged = true;

@@ -340,7 +340,7 @@ const DeclaredParams<CuttingRun>& cutting_declaration() {
              [](S& s, double v) { s.geometry.coulomb_fixed_point = v != 0.0; })
         .add(option_param("coulomb_update", "update of the contact pressure between fixed-point steps",
                           {{"relaxed", "p <- 0.5 g(p) + 0.5 p"}, {"anderson", "Anderson acceleration, depth 5, mixing 1"}}, "anderson"),
-             [](S& s, double v) { s.geometry.coulomb_anderson_depth = v != 0.0 ? 5 : 0; })
+             [](S& s, double v) { s.geometry.coulomb_anderson_depth = v != 0.0 ? CuttingSetup{}.coulomb_anderson_depth : 0; })
         .add(option_param("streamline", "free surfaces held as streamlines (v.n = 0)",
                           {{"none", "no surface held"}, {"top", "the uncut top surface"}, {"top_back", "the uncut top and the chip back"},
                            {"top_back_beyond", "the uncut top and the chip back beyond the contact length"}},
@@ -669,6 +669,8 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
   put("stick_fraction", r.stick_fraction, "1");
   put("stick_length_fraction", r.stick_length_fraction, "1");
   put("mu_sticking", r.mu_sticking, "1");
+  put("tau_plateau_start", r.tau_plateau_start, "1");
+  put("tau_drop", r.tau_drop, "1");
   put("mu_sliding", r.mu_sliding, "1");
   put("mu_app", r.mu_app, "1");
   put("contact_length", c.contact_length * t1, "m");
@@ -832,6 +834,8 @@ SolverSpec cutting_spec() {
                {"stick_fraction", Dim::dimensionless, "fraction of the contact length in stick (zero slip)"},
                {"stick_length_fraction", Dim::dimensionless, "stick zone from the tool tip: where |slip| first reaches stick_tol x chip speed (linear between the profile points) / contact length"},
                {"mu_sticking", Dim::dimensionless, "apparent friction sum|r_t|/sum|r_n| over the stick zone"},
+               {"tau_plateau_start", Dim::dimensionless, "start of the tangential-stress plateau (field |tau| at or above 0.9 of its maximum, interpolated) / contact length"},
+               {"tau_drop", Dim::dimensionless, "where the field |tau| falls below 0.9 of its maximum after it (the plateau's end, interpolated) / contact length; 1 if it never does"},
                {"mu_sliding", Dim::dimensionless, "apparent friction sum|r_t|/sum|r_n| over the slip zone"},
                {"mu_app", Dim::dimensionless, "apparent friction |F_t|/|F_n| of the contact resultants"},
                {"contact_length", Dim::length, "contact length used (searched when contact_search = 1)"},

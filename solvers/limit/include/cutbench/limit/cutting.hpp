@@ -76,7 +76,7 @@ struct CuttingSetup {
 // One step of the adaptive refinement of a cutting solution (adapt_cutting).
 struct CuttingAdaptStep {
   int elements = 0;
-  double fc_bar = 0.0, stick_fraction = 0.0, mu_sticking = 0.0, stick_length_fraction = 0.0;
+  double fc_bar = 0.0, stick_fraction = 0.0, stick_length_fraction = 0.0;
 };
 
 struct CuttingResult {
@@ -99,6 +99,12 @@ struct CuttingResult {
   // linearly between the profile points, over the contact length (1: no crossing; a continuous
   // function of the nodal slips, unlike the node count of stick_fraction)
   double stick_length_fraction = 0.0;
+  // the tangential-stress plateau of Figs. 8-9 ("constant in part of the contact region until it
+  // decreases in the vicinity of s/l = 0.8"), on |tau| of the element stress field: the interval
+  // around its maximum where |tau| stays at or above kTauPlateauLevel of that maximum, its two ends
+  // interpolated linearly between profile points, over the contact length (start 0 / drop 1 when
+  // |tau| never falls below the level on that side)
+  double tau_plateau_start = 0.0, tau_drop = 1.0;
   // apparent friction Σ|r_t| / Σ|r_n| over the stick nodes, the slip nodes, and |F_t|/|F_n| of
   // the resultants over the whole contact (NaN where a zone is empty)
   double mu_sticking = 0.0, mu_sliding = 0.0, mu_app = 0.0;
@@ -131,6 +137,9 @@ struct CuttingResult {
   // run's outer loop, answered from its record while the loop is replayed (checkpoints)
   int recorded_evaluation = -1;
 };
+
+// "constant" read as within 10 % of the plateau's maximum (a judgement; the paper gives no level)
+inline constexpr double kTauPlateauLevel = 0.9;
 
 double chip_thickness(double t1, double phi, double alpha);  // Eq. 2
 // Eq. 1, Merchant's angle π/4 + (α − β)/2 with β = atan μ (the analytic library's, one formula).

@@ -108,7 +108,6 @@ struct CoulombReport {
   bool converged = false;
   double change = 0.0;
   std::vector<double> collapse_history;
-  std::vector<double> change_history;   // per step after the first
   std::vector<int> ipm_iterations;      // interior-point iterations per solve (the first included)
 };
 LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings = {}, const CoulombOptions& opt = {},

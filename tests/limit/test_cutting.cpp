@@ -56,6 +56,31 @@ BOOST_AUTO_TEST_CASE(frictionless_chip_against_merchant) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(supernodal_and_up_looking_ldl_agree_on_a_frictional_chip) {
+  // the Table 3 chip at t1 = 0.5 mm (mu = 0.4809, the pressure fixed point, layer model), n = 6:
+  // the two factorisations give the same collapse load, contact pressures and stick zone
+  CuttingSetup c;
+  c.alpha = 6.0 * M_PI / 180;
+  c.mu = 0.4809;
+  c.phi = 30.4 * M_PI / 180;
+  c.contact_length = 1.899;
+  c.n = 6;
+  SocpSettings up, sn;
+  up.backend = KktBackend::builtin;
+  sn.backend = KktBackend::supernodal;
+  const auto a = solve_cutting(c, up), b = solve_cutting(c, sn);
+  BOOST_TEST(std::abs(a.fc_bar - b.fc_bar) < 1e-7 * a.fc_bar);
+  BOOST_TEST(a.sigma_n.size() == b.sigma_n.size());
+  double pmax = 0.0, diff = 0.0;
+  for (std::size_t i = 0; i < a.sigma_n.size() && i < b.sigma_n.size(); ++i) {
+    pmax = std::max(pmax, std::abs(a.sigma_n[i]));
+    diff = std::max(diff, std::abs(a.sigma_n[i] - b.sigma_n[i]));
+  }
+  BOOST_TEST_MESSAGE("F_c bar " << a.fc_bar << " / " << b.fc_bar << ", max |d sigma_n| " << diff << " of " << pmax);
+  BOOST_TEST(diff < 1e-4 * pmax);
+  BOOST_TEST(a.stick_fraction == b.stick_fraction);
+}
+
 BOOST_AUTO_TEST_CASE(frictionless_chip_adaptive) {
   // α = 0, μ = 0, φ = 45°, l = 1.2 t1: dissipation-driven refinement from n = 4:
   // F̄c 2.033 (136 elements) → 2.007 with 343 elements after 5 steps (uniform n = 12: 2.005, 1032).

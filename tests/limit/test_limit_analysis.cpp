@@ -124,12 +124,12 @@ BOOST_AUTO_TEST_CASE(prandtl_punch_adaptive) {
 }
 
 BOOST_AUTO_TEST_CASE(kkt_backends_agree) {
-  // builtin LDLᵀ (dynamic regularisation), CHOLMOD simplicial LDLᵀ and Eigen SimplicialLDLT (static
-  // regularisation with retry) on the punch and the frictional block
+  // builtin LDLᵀ, up-looking and supernodal (dynamic regularisation), CHOLMOD simplicial LDLᵀ and
+  // Eigen SimplicialLDLT (static regularisation with retry) on the punch and the frictional block
   for (int which = 0; which < 2; ++which) {
     const LimitModel m = which == 0 ? prandtl_punch_model(1.0, 4) : frictional_block_model(1.0, 1.0, 1.0, 0.2, 4, 4);
     double ref = 0.0;
-    for (auto be : {KktBackend::builtin, KktBackend::cholmod, KktBackend::eigen}) {
+    for (auto be : {KktBackend::builtin, KktBackend::supernodal, KktBackend::cholmod, KktBackend::eigen}) {
       SocpSettings st;
       st.backend = be;
       const auto s = solve_limit(m, st);

@@ -13,6 +13,7 @@
 
 #include "cutbench/common/errors.hpp"
 #include "ldl.hpp"
+#include "supernodal_ldl.hpp"
 
 namespace cutbench::limit {
 
@@ -306,23 +307,23 @@ private:
 using EigenLdlt = EigenFamilyLdlt<Eigen::SimplicialLDLT<SpMat, Eigen::Lower>>;
 using CholmodLdlt = EigenFamilyLdlt<Eigen::CholmodSimplicialLDLT<SpMat, Eigen::Lower>>;
 
-// Own up-looking LDLᵀ with dynamic regularisation of pivots with the wrong sign.
+// Own LDLᵀ (up-looking, or supernodal) with dynamic regularisation of pivots with the wrong sign.
+template <class Factor>
 class BuiltinLdl final : public LdltBackend {
 public:
   BuiltinLdl(std::vector<signed char> signs, double eps, double delta)
       : signs_(std::move(signs)), eps_(eps), delta_(delta) {}
   void analyze(const SpMat& K) override { ldl_.analyze(K, signs_); }
   bool factorize(const SpMat& K) override {
-    regularised_ = ldl_.factorize(K, eps_, delta_);
+    ldl_.factorize(K, eps_, delta_);
     return ldl_.finite();  // pivot growth to inf/NaN: let the caller retry with a larger δ
   }
   VectorXd solve(const VectorXd& r) override { return ldl_.solve(r); }
 
 private:
-  detail::QuasiDefiniteLdl ldl_;
+  Factor ldl_;
   std::vector<signed char> signs_;
   double eps_, delta_;
-  int regularised_ = 0;
 };
 
 // Quasi-definite KKT matrix: lower triangle stored; W² blocks rewritten each iteration.
@@ -332,10 +333,13 @@ public:
       double dyn_delta)
       : p_(p), n_(p.n()), np_(static_cast<int>(p.A.rows())), m_(static_cast<int>(p.G.rows())),
         delta_(delta), max_refine_(max_refine), refine_tol_(refine_tol) {
-    if (backend == KktBackend::builtin) {
+    if (backend == KktBackend::builtin || backend == KktBackend::supernodal) {
       std::vector<signed char> signs(static_cast<std::size_t>(n_ + np_ + m_), -1);
       std::fill(signs.begin(), signs.begin() + n_, static_cast<signed char>(1));
-      ldlt_ = std::make_unique<BuiltinLdl>(std::move(signs), dyn_eps, dyn_delta);
+      if (backend == KktBackend::builtin)
+        ldlt_ = std::make_unique<BuiltinLdl<detail::QuasiDefiniteLdl>>(std::move(signs), dyn_eps, dyn_delta);
+      else
+        ldlt_ = std::make_unique<BuiltinLdl<detail::SupernodalLdl>>(std::move(signs), dyn_eps, dyn_delta);
     } else if (backend == KktBackend::cholmod) {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wnull-dereference"  // Eigen 3.4's SparseRef (viewAsCholmod), a false positive of GCC 12

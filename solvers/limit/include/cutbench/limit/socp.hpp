@@ -61,11 +61,13 @@ struct SocpProblem {
 SocpProblem standard_form(const Eigen::VectorXd& c, const SpMat& A, const Eigen::VectorXd& b,
                           const ConeDims& cones);
 
-// builtin: own up-looking sparse LDLᵀ (AMD ordering) with dynamic regularisation of pivots of
-// the wrong sign — the robust default. cholmod: SuiteSparse CHOLMOD simplicial LDLᵀ via Eigen;
+// supernodal (the default) and builtin: own sparse LDLᵀ on an AMD ordering, supernodal with dense
+// blocks or up-looking, with dynamic regularisation of pivots of the wrong sign (the same factor
+// up to round-off; supernodal 1.2× faster on a 10,000-element cutting solve, solvers/limit/README.md
+// sec. 3.5). cholmod: SuiteSparse CHOLMOD simplicial LDLᵀ via Eigen;
 // eigen: Eigen::SimplicialLDLT. The last two have no dynamic regularisation and can break down
 // on singular saddle points (reported as numerical_error).
-enum class KktBackend { builtin, cholmod, eigen };
+enum class KktBackend { builtin, supernodal, cholmod, eigen };
 
 struct SocpSettings {
   double feastol = 1e-8;  // relative primal and dual residuals
@@ -82,7 +84,7 @@ struct SocpSettings {
   // residuals and relative gap are below this.
   double inaccurate_tol = 1e-5;
   int equilibration_passes = 0;  // Ruiz scaling of [A; G] (0: none; experimental, off by default)
-  KktBackend backend = KktBackend::builtin;
+  KktBackend backend = KktBackend::supernodal;
   std::function<void(const std::string&)> log;  // iteration log lines (optional)
 };
 

@@ -59,12 +59,7 @@ BOOST_AUTO_TEST_CASE(frictionless_chip_against_merchant) {
 BOOST_AUTO_TEST_CASE(supernodal_and_up_looking_ldl_agree_on_a_frictional_chip) {
   // the Table 3 chip at t1 = 0.5 mm (mu = 0.4809, the pressure fixed point, layer model), n = 6:
   // the two factorisations give the same collapse load, contact pressures and stick zone
-  CuttingSetup c;
-  c.alpha = 6.0 * M_PI / 180;
-  c.mu = 0.4809;
-  c.phi = 30.4 * M_PI / 180;
-  c.contact_length = 1.899;
-  c.n = 6;
+  const CuttingSetup c = test::table3_chip_t1_05();
   SocpSettings up, sn;
   up.backend = KktBackend::builtin;
   sn.backend = KktBackend::supernodal;

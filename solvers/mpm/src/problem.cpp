@@ -182,7 +182,7 @@ std::string MpmProblem::fault() const {
 }
 
 namespace {
-constexpr std::uint64_t kStateVersion = 4;
+constexpr std::uint64_t kStateVersion = 5;
 }  // namespace
 
 void MpmProblem::save_state(BinaryWriter& w) const {
@@ -214,6 +214,7 @@ void MpmProblem::save_state(BinaryWriter& w) const {
   w.f64(alpha_fb_);
   w.vec({audit_.tool_work, audit_.pic_damping, audit_.feedback_loss, audit_.increment_loss, audit_.tool_contact_loss,
          audit_.crack_contact_loss, audit_.internal_work, audit_.cohesive_work});
+  w.vec(cohesive_opening_);  // USAVG: the openings of the strain-last extrapolation, for its redo
 }
 
 void MpmProblem::load_state(BinaryReader& r) {
@@ -255,6 +256,7 @@ void MpmProblem::load_state(BinaryReader& r) {
   alpha_fb_ = r.f64();
   const auto a = sized(r.vec(), 8, "the energy audit");
   audit_ = EnergyAudit{a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7]};
+  cohesive_opening_ = sized(r.vec(), cohesive_opening_.size(), "the crack openings");
   extrapolated_ = false;  // the next step extrapolates the loaded particles afresh
 }
 
@@ -855,11 +857,12 @@ void MpmProblem::remap_momenta() {
   }
 }
 
-Eigen::Vector2d MpmProblem::field_velocity(const Eigen::Vector2d& pt, int side) const {
+Eigen::Vector2d MpmProblem::field_velocity(const Eigen::Vector2d& pt, int side,
+                                           const std::vector<Eigen::Vector2d>& vel) const {
   Eigen::Vector2d v = Eigen::Vector2d::Zero();
   double wsum = 0.0;
   for_point_nodes(pt, side, [&](std::size_t k, double s) {  // momentum-weighted, see cohesive_forces()
-    v += s * nodes_[k].m * vnew_[k];
+    v += s * nodes_[k].m * vel[k];
     wsum += s * nodes_[k].m;
   });
   return wsum > 0.0 ? Eigen::Vector2d(v / wsum) : Eigen::Vector2d::Zero();
@@ -867,19 +870,21 @@ Eigen::Vector2d MpmProblem::field_velocity(const Eigen::Vector2d& pt, int side) 
 
 void MpmProblem::move_crack_surfaces() {
   if (!cfg_.crack.enabled) return;
+  const std::vector<Eigen::Vector2d>& vel =
+      cfg_.numerics.strain_update == Numerics::StrainUpdate::usl ? vnew_ : vstrain_;
   const long ns = static_cast<long>(crack_.xc.size());
 #pragma omp parallel for schedule(static) num_threads(nthreads_) if (ns > 2000)
   for (long kl = 0; kl < ns; ++kl) {
     const auto k = static_cast<std::size_t>(kl);
-    const Eigen::Vector2d vt = field_velocity(crack_.top[k], 1);
-    const Eigen::Vector2d vb = field_velocity(crack_.bot[k], 0);
+    const Eigen::Vector2d vt = field_velocity(crack_.top[k], 1, vel);
+    const Eigen::Vector2d vb = field_velocity(crack_.bot[k], 0, vel);
     crack_.top[k] += dt_ * vt;
     crack_.bot[k] += dt_ * vb;
   }
 }
 
-void MpmProblem::constrain_extrapolated(bool count, double t) {
-  if (cfg_.crack.enabled) update_crack_openings();
+void MpmProblem::constrain_extrapolated(bool count, double t, bool fresh_openings) {
+  if (fresh_openings && cfg_.crack.enabled) update_crack_openings();
   const Eigen::Vector2d V = cfg_.tool.at(t);
   const auto nnz = static_cast<std::size_t>(nn_);
 #pragma omp parallel num_threads(nthreads_)
@@ -994,17 +999,18 @@ void MpmProblem::step() {
     if (!extrapolated_) {  // the first step; else a redo of the last step's extrapolation (counted there)
       const bool count = steps_ == 0;
       particles_to_grid(false);
-      constrain_extrapolated(count, time_);
+      constrain_extrapolated(count, time_, count);  // a redo: the crack openings the extrapolation saw
     }
     usavg_half(true);
   }
   cohesive_forces();
   grid_update();
-  grid_to_particles();
-  move_crack_surfaces();
+  grid_to_particles();  // MUSL: and its strain pass
+  if (!avg) move_crack_surfaces();
   if (avg) {  // strain last: the updated particles extrapolated at their new positions
     particles_to_grid(false);
-    constrain_extrapolated(true, time_ + dt_);
+    constrain_extrapolated(true, time_ + dt_, true);
+    move_crack_surfaces();
     usavg_half(false);
     extrapolated_ = true;
   }

@@ -46,9 +46,9 @@ struct Numerics {
   //          particle momenta re-extrapolated at the particles' new positions (contact and
   //          boundary conditions applied). The two halves are NairnMPM's UpdateStrainsFirst and
   //          UpdateStrainsLastContact tasks with dt/2 each.
-  // usl and musl apply no contact to the extrapolated momenta before the grid update.
-  // Default USL: in this solver USAVG and MUSL reverse the transverse force and multiply the
-  // rubbing force in cutting (benchmarks/nairn2015/FINDINGS.md F14).
+  // usl and musl apply no contact to the extrapolated momenta before the grid update. With MUSL
+  // and USAVG the crack surfaces move with the strain-last field (see move_crack_surfaces).
+  // Default USL; NairnMPM's default is USAVG (benchmarks/nairn2015/FINDINGS.md F14).
   enum class StrainUpdate { usl = 0, musl = 1, usavg = 2 };
   StrainUpdate strain_update = StrainUpdate::usl;
   // Diagnostic (musl): false skips the contact re-applied to the re-extrapolated momenta
@@ -264,8 +264,9 @@ private:
   // USAVG: contact (the tool at its velocity at time t) and boundary conditions on the
   // extrapolated momenta (in place), the strain velocities vstrain_ and each particle's velocity
   // gradient (L*_); `count` adds the contact to the energy audit (false where the same
-  // extrapolation is being redone).
-  void constrain_extrapolated(bool count, double t);
+  // extrapolation is being redone); `fresh_openings` recomputes the crack openings crack contact
+  // uses (false in a redo: the openings the extrapolation saw, before the crack surfaces moved).
+  void constrain_extrapolated(bool count, double t, bool fresh_openings);
   // USAVG: the strain half-step from the cached velocity gradients and, first = true, the grid
   // forces from the stresses after it.
   void usavg_half(bool first);
@@ -287,9 +288,13 @@ private:
   void update_strain(std::size_t p, const Eigen::Matrix2d& L, double h);  // over a time h
   void resolve_contacts(std::size_t n, Eigen::Vector2d p[2], const bool has[2], const Eigen::Vector2d& V,
                         Eigen::Vector2d& imp, Eigen::Vector2d& impb, Eigen::Vector2d dp_crack[2]) const;
+  // Moves the crack surfaces with the field that strains the material: the updated grid velocities
+  // (USL), the re-extrapolated, constrained ones (MUSL, USAVG: vstrain_, after the strain-last
+  // pass, as NairnMPM moves its cracks after that pass). A surface moved with another field than
+  // the material's strain sees no opening where the material opens (FINDINGS F14).
   void move_crack_surfaces();
   void sort_particles();
-  Eigen::Vector2d field_velocity(const Eigen::Vector2d& pt, int side) const;
+  Eigen::Vector2d field_velocity(const Eigen::Vector2d& pt, int side, const std::vector<Eigen::Vector2d>& vel) const;
   template <class F>
   void for_point_nodes(const Eigen::Vector2d& pt, int side, F&& fn) const;
 

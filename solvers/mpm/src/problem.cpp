@@ -1006,8 +1006,9 @@ void MpmProblem::step() {
   cohesive_forces();
   grid_update();
   grid_to_particles();  // MUSL: and its strain pass
-  if (!avg) move_crack_surfaces();
-  if (avg) {  // strain last: the updated particles extrapolated at their new positions
+  if (!avg) {
+    move_crack_surfaces();
+  } else {  // strain last: the updated particles extrapolated at their new positions
     particles_to_grid(false);
     constrain_extrapolated(true, time_ + dt_, true);
     move_crack_surfaces();

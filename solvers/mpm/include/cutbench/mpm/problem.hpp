@@ -170,6 +170,9 @@ struct EnergyBalance {
   double stress_power = 0.0;  // booked by the stress updates: sum over updates of V0 (tau_n + tau_n+1)/2 : l (l = L h)
   double stress_lag = 0.0;    // audit.internal_work - stress_power
   double cohesive_lag = 0.0;  // audit.cohesive_work - cohesive
+  // the scheme's numerical terms, signed: PIC and feedback damping, increment loss, tool and crack
+  // contact losses, stress and cohesive lags
+  double numerical = 0.0;
   // initial energy + tool_work minus every other term (kinetic, strain, plastic, cohesive, the
   // audit's losses, stress_lag, cohesive_lag): the stress updates' booked stress power less the
   // elastic and plastic energies they store, plus what the scheme's extra passes (MUSL's re-mapped

@@ -223,8 +223,8 @@ BOOST_AUTO_TEST_CASE(bench_reports_throughput) {
 
 namespace {
 // A run of `v` interrupted after every checkpoint and resumed each time equals the uninterrupted
-// run bit for bit (histories, snapshots, every scalar but timings).
-void check_resumes_bit_for_bit(const Values& v, const std::string& path) {
+// run bit for bit (histories, snapshots, every scalar but timings); returns the uninterrupted run.
+RunOutput check_resumes_bit_for_bit(const Values& v, const std::string& path) {
   const RunOutput ref = run_cutting(v, {});
   std::filesystem::remove(path);
   // interval 0: a checkpoint at every clock check (every 256 steps); stop after each and resume
@@ -258,6 +258,7 @@ void check_resumes_bit_for_bit(const Values& v, const std::string& path) {
                boost::test_tools::per_element());
   }
   BOOST_TEST(!r.notes.empty());  // the resume is noted
+  return ref;
 }
 }  // namespace
 
@@ -271,11 +272,10 @@ BOOST_AUTO_TEST_CASE(interrupted_after_every_checkpoint_equals_uninterrupted) {
   const auto dir = std::filesystem::temp_directory_path() / "cutbench_mpm_checkpoint";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "interrupted.ckpt").string();
-  for (const double scheme : {0.0, 2.0}) {
-    Values v = v0;
-    v["strain_update"] = scheme;
-    BOOST_TEST_CONTEXT("strain_update " << scheme) { check_resumes_bit_for_bit(v, path); }
-  }
+  const RunOutput ref = check_resumes_bit_for_bit(v0, path);  // USL, the default
+  Values va = v0;
+  va["strain_update"] = 2.0;
+  BOOST_TEST_CONTEXT("USAVG") { check_resumes_bit_for_bit(va, path); }
   // a checkpoint of another run is not taken over: the run starts from the beginning
   std::filesystem::remove(path);
   {
@@ -284,7 +284,6 @@ BOOST_AUTO_TEST_CASE(interrupted_after_every_checkpoint_equals_uninterrupted) {
   }
   CheckpointScope other(CheckpointSpec{path, "another run", 1e9, false});
   const RunOutput fresh = run_cutting(v0, {});
-  const RunOutput ref = run_cutting(v0, {});
   BOOST_TEST(fresh.tables[0].columns.at("F_c") == ref.tables[0].columns.at("F_c"), boost::test_tools::per_element());
   for (const auto& n : fresh.notes) BOOST_TEST(n.find("resumed") == std::string::npos);
 }

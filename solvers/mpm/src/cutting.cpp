@@ -152,7 +152,7 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
                            {"musl", "modified USL: from the updated particle momenta re-extrapolated to the grid"},
                            {"usavg", "NairnMPM's default (USAVG): half first, from the extrapolated momenta with contact, half last, "
                                      "from the updated particles re-extrapolated at their new positions"}},
-                          "usl"),
+                          "usavg"),
              [](S& s, double v) { s.numerics.strain_update = static_cast<Numerics::StrainUpdate>(static_cast<int>(v)); })
         .add(switch_param("musl_recontact",
                           "MUSL only: re-apply tool/crack contact to the re-extrapolated momenta (false: skip it, diagnostic)",

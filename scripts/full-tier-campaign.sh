@@ -53,8 +53,8 @@ case "$method" in
     ;;
   mpm)
     # Nairn: every paper-resolution run has 15 particles through the chip (about 30,000 particles,
-    # 200,000 steps, 6e9 particle-steps: 13-14 min on one thread with USL, about 1.12 times that with
-    # USAVG, the cases' scheme). 163 distinct runs = about 20 h on two cores (solvers/mpm/README.md,
+    # 200,000 steps, 6e9 particle-steps: 13-14 min on one thread with USL, about 1.43 times that with
+    # USAVG, the cases' scheme). 163 distinct runs = about 25 h on two cores (solvers/mpm/README.md,
     # "Paper-resolution campaign"). Order: the
     # paper's central claims first (Fig 4, the Fig 9 pair, the Fig 3 resolution study, the Fig 8
     # transition and touching forces), then the sweeps that share their runs, then the rest. Two

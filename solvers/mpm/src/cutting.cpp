@@ -151,8 +151,7 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
                           {{"usl", "update stress last: from the updated grid velocities"},
                            {"musl", "modified USL: from the updated particle momenta re-extrapolated to the grid"},
                            {"usavg", "NairnMPM's default (USAVG): half first, from the extrapolated momenta with contact, half last, "
-                                     "from the updated particles re-extrapolated at their new positions (that extrapolation is the "
-                                     "next step's, so its half is taken with the next step's first half)"}},
+                                     "from the updated particles re-extrapolated at their new positions"}},
                           "usavg"),
              [](S& s, double v) { s.numerics.strain_update = static_cast<Numerics::StrainUpdate>(static_cast<int>(v)); })
         .add(switch_param("musl_recontact",

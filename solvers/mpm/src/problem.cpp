@@ -926,9 +926,21 @@ void MpmProblem::constrain_extrapolated(bool count, double t, bool fresh_opening
   }
 }
 
-void MpmProblem::usavg_strain_and_forces(double h) {
+void MpmProblem::usavg_half(bool first) {
   const long np = static_cast<long>(x_.size());
-  // the strain increment over h, then the grid forces from the stresses after it
+  const double h = 0.5 * dt_;
+  if (!first) {
+#pragma omp parallel for schedule(static) num_threads(nthreads_)
+    for (long pl = 0; pl < np; ++pl) {
+      const auto p = static_cast<std::size_t>(pl);
+      if (frozen_[p] || rigid_[p]) continue;
+      Eigen::Matrix2d L;
+      L << Lxx_[p], Lxy_[p], Lyx_[p], Lyy_[p];
+      update_strain(p, L, h);
+    }
+    return;
+  }
+  // the first half, then the grid forces from the stresses after it
   const Eigen::Vector2d grav = cfg_.gravity;
   const std::size_t nfield = 2 * static_cast<std::size_t>(nn_);
 #pragma omp parallel num_threads(nthreads_)
@@ -989,10 +1001,7 @@ void MpmProblem::step() {
       particles_to_grid(false);
       constrain_extrapolated(count, time_, count);  // a redo: the crack openings the extrapolation saw
     }
-    // the second half of the last step and the first half of this one take the same velocity
-    // gradients (the strain-last extrapolation is this step's extrapolation), so they are one
-    // update over dt; the first step takes its first half only
-    usavg_strain_and_forces(steps_ == 0 ? 0.5 * dt_ : dt_);
+    usavg_half(true);
   }
   cohesive_forces();
   grid_update();
@@ -1003,7 +1012,8 @@ void MpmProblem::step() {
     particles_to_grid(false);
     constrain_extrapolated(true, time_ + dt_, true);
     move_crack_surfaces();
-    extrapolated_ = true;  // its strain half is taken with the next step's first half
+    usavg_half(false);
+    extrapolated_ = true;
   }
   time_ += dt_;
   ++steps_;

@@ -270,10 +270,9 @@ private:
   // extrapolation is being redone); `fresh_openings` recomputes the crack openings crack contact
   // uses (false in a redo: the openings the extrapolation saw, before the crack surfaces moved).
   void constrain_extrapolated(bool count, double t, bool fresh_openings);
-  // USAVG: the strain increment over h from the cached velocity gradients (the last step's
-  // strain-last half and this step's first half, which share them), then the grid forces from the
-  // stresses after it.
-  void usavg_strain_and_forces(double h);
+  // USAVG: the strain half-step from the cached velocity gradients and, first = true, the grid
+  // forces from the stresses after it.
+  void usavg_half(bool first);
   void update_crack_openings();  // per node column, for crack contact
   void cohesive_forces();
   void grid_update();

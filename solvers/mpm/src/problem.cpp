@@ -1170,10 +1170,7 @@ EnergyBalance MpmProblem::energy_balance() const {
   b.cohesive_lag = audit_.cohesive_work - b.cohesive;
   b.numerical = audit_.pic_damping + audit_.feedback_loss + audit_.increment_loss + audit_.tool_contact_loss +
                 audit_.crack_contact_loss + b.stress_lag + b.cohesive_lag;
-  b.residual = initial_energy_ + audit_.tool_work -
-               (b.kinetic + b.strain + b.plastic + b.cohesive + audit_.pic_damping + audit_.feedback_loss +
-                audit_.increment_loss + audit_.tool_contact_loss + audit_.crack_contact_loss + b.stress_lag +
-                b.cohesive_lag);
+  b.residual = initial_energy_ + audit_.tool_work - (b.kinetic + b.strain + b.plastic + b.cohesive + b.numerical);
   return b;
 }
 

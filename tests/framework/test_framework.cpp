@@ -929,6 +929,16 @@ tolerance = 0.01
 units = "mm"
 source = "test"
 tolerance_source = "test"
+[[checks]]
+key = "one_minus_min"
+kind = "reproduction"
+metric = "absolute"
+value = { difference = [1, { ratio = [ { series = "line", output = "y", x = "x", window = ["2 mm", "10 mm"], reduce = "min" }, 0.02 ] }] }
+reference = 0.3
+tolerance = 0.05
+units = "1"
+source = "test"
+tolerance_source = "test"
 )");
   const CaseResult r = run_case(load_case(f, "quick"), "quick", nullptr);
   std::map<std::string, std::string> audit;
@@ -938,6 +948,9 @@ tolerance_source = "test"
   BOOST_TEST(audit["argmax_in_sweep"].find("cannot fail") != std::string::npos);
   BOOST_TEST(audit["echo"].find("input echo") != std::string::npos);
   BOOST_TEST(audit["honest"].empty());
+  // 1 - min y / 0.02 = 0.8 against 0.3 +- 0.05: it passes only for y scaled by 3.25-3.75 or shifted
+  // by 0.45-0.55 of its span, between the fixed perturbations; the solve for the scale finds them
+  BOOST_TEST(audit["one_minus_min"].empty(), audit["one_minus_min"]);
 }
 
 // A recorded check judged again against a changed case file keeps its value and takes the new

@@ -64,11 +64,8 @@ std::vector<double>* find_column(std::vector<SeriesResult>& series, const Leaf& 
 }
 
 
-// The perturbations applied to one column, each a function of the column.
-std::vector<std::vector<double>> perturbations(const std::vector<double>& y,
-                                               const std::vector<double>& factors,
-                                               const std::vector<double>& offsets) {
-  std::vector<std::vector<double>> out;
+// The scale of a column's shifts: its mean's size or its range, whichever is larger.
+double column_span(const std::vector<double>& y) {
   double lo = INFINITY, hi = -INFINITY, mean = 0.0;
   std::size_t n = 0;
   for (double v : y) {
@@ -78,8 +75,18 @@ std::vector<std::vector<double>> perturbations(const std::vector<double>& y,
     mean += v;
     ++n;
   }
-  if (n == 0) return out;
+  if (n == 0) return 1e-30;
   mean /= static_cast<double>(n);
+  return std::max({std::abs(mean), hi - lo, 1e-30});
+}
+
+// The perturbations applied to one column, each a function of the column.
+std::vector<std::vector<double>> perturbations(const std::vector<double>& y,
+                                               const std::vector<double>& factors,
+                                               const std::vector<double>& offsets) {
+  std::vector<std::vector<double>> out;
+  if (std::none_of(y.begin(), y.end(), [](double v) { return std::isfinite(v); })) return out;
+  const double span = column_span(y);
   std::vector<double> ks = {-1.0, 0.0, 0.5, 0.9, 0.99, 1.01, 1.1, 2.0, 10.0, 1e3};
   for (double f : factors) {
     if (std::isfinite(f)) ks.push_back(f);
@@ -89,7 +96,6 @@ std::vector<std::vector<double>> perturbations(const std::vector<double>& y,
     for (auto& v : p) v *= k;
     out.push_back(std::move(p));
   }
-  const double span = std::max({std::abs(mean), hi - lo, 1e-30});
   for (double d : {-10.0, -1.0, -0.1, 0.1, 1.0, 10.0}) {
     std::vector<double> p = y;
     for (auto& v : p) v += d * span;
@@ -163,7 +169,7 @@ std::string audit_check(const CaseSpec& spec, const CheckSpec& cs, const CheckRe
   bool can_pass = base.status == "PASS", can_fail = base.status == "FAIL";
   // scalings that move a value of degree one in the data onto the reference and across each
   // boundary (a mean, an interpolated point, a ratio's numerator)
-  std::vector<double> factors, offsets;
+  std::vector<double> factors, offsets, targets_for_solve;
   if (base.has_value) {
     std::vector<double> targets;
     if (base.is_range) {
@@ -176,6 +182,7 @@ std::string audit_check(const CaseSpec& spec, const CheckSpec& cs, const CheckRe
     }
     // offsets are added to SI data: the record is in the check's units
     const double unit = from_si(1.0, cs.units, "audit") - from_si(0.0, cs.units, "audit");
+    targets_for_solve = targets;
     for (double t : targets) {
       for (double m : {0.999, 1.0, 1.001}) {
         if (base.value != 0.0) factors.push_back(m * t / base.value);
@@ -202,6 +209,74 @@ std::string audit_check(const CaseSpec& spec, const CheckSpec& cs, const CheckRe
     }
     *col = saved;
     if (can_pass && can_fail) return {};
+  }
+  // A value that is not of degree one in the data (1 - min/F, a slope, a ratio's denominator) can
+  // sit between the fixed scalings: solve for the scale and the shift of each column that put the
+  // value on each target, by bracketing on a grid and bisecting.
+  if (!targets_for_solve.empty()) {
+    for (const auto& l : leaves) {
+      std::vector<double>* col = find_column(series, l);
+      if (!col) continue;
+      const std::vector<double> saved = *col;
+      const double span = column_span(saved);
+      for (int family = 0; family < 2 && !(can_pass && can_fail); ++family) {
+        // family 0: y * s, s in +-[0.01, 100]; family 1: y + s * span, s in [-20, 20]
+        auto apply = [&](double s) {
+          *col = saved;
+          for (auto& v : *col) v = family == 0 ? v * s : v + s * span;
+        };
+        auto eval = [&](double s, double& value) -> std::string {
+          apply(s);
+          try {
+            const CheckRecord r = evaluate_checks(one, series, refs).front();
+            if (!r.has_value || !std::isfinite(r.value)) return {};
+            value = r.value;
+            return r.status == "INCONCLUSIVE" ? std::string("PASS") : r.status;
+          } catch (const std::exception&) {
+            return {};
+          }
+        };
+        std::vector<double> grid;
+        for (int i = -60; i <= 60; ++i) {
+          const double s = family == 0 ? std::pow(10.0, i / 30.0) : 20.0 * i / 60.0;
+          grid.push_back(s);
+          if (family == 0) grid.push_back(-s);
+        }
+        std::sort(grid.begin(), grid.end());
+        std::vector<double> vals(grid.size(), NAN);
+        for (std::size_t i = 0; i < grid.size(); ++i) {
+          double v = NAN;
+          const std::string st = eval(grid[i], v);
+          vals[i] = v;
+          can_pass = can_pass || st == "PASS";
+          can_fail = can_fail || st == "FAIL";
+        }
+        for (double t : targets_for_solve) {
+          for (std::size_t i = 0; i + 1 < grid.size() && !(can_pass && can_fail); ++i) {
+            if (!std::isfinite(vals[i]) || !std::isfinite(vals[i + 1])) continue;
+            if ((vals[i] - t) * (vals[i + 1] - t) > 0.0) continue;
+            double a = grid[i], b = grid[i + 1], fa = vals[i] - t;
+            std::string st;
+            for (int it = 0; it < 50; ++it) {
+              const double m = 0.5 * (a + b);
+              double v = NAN;
+              st = eval(m, v);
+              can_pass = can_pass || st == "PASS";
+              can_fail = can_fail || st == "FAIL";
+              if (!std::isfinite(v)) break;
+              if ((v - t) * fa > 0.0) {
+                a = m;
+                fa = v - t;
+              } else {
+                b = m;
+              }
+            }
+          }
+        }
+      }
+      *col = saved;
+      if (can_pass && can_fail) return {};
+    }
   }
   if (!can_fail) {
     return "cannot fail: no perturbation of the data it reads (scaled, shifted, reversed, a spike or dip at any point) "

@@ -10,7 +10,9 @@ reports/full_tier/<paper>/<item>.h5: the series tables and histories of DIR/<pap
 only the snapshots the case's plots draw (their fields stored in single precision), so that the
 report draws every plot from the paper-resolution run. These records are the paper-resolution
 verdicts that `cutbench list` and the report lead with. A later record of the same case replaces
-the earlier one.
+the earlier one. The record is written even when one of its reproduction or validation checks
+carries a perturbation-audit finding (it cannot fail or cannot pass); the script then names it
+and exits 1, since `cutbench audit` (a ctest gate) fails on such a record.
 
     /usr/bin/python3 reports/record_full_tier.py --results DIR --how "binary dbf0aff, 1 thread, ..."
 """
@@ -128,6 +130,7 @@ def main():
     if missing:
         fail("--case: no full-tier record for %s in '%s'" % (", ".join(sorted(missing)), a.results))
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    vacuous = 0
     for rec in found:
         paper, item = rec["case"].split("/", 1)
         rec["recorded"] = {"how": a.how.strip(), "recorded_at": now}
@@ -140,6 +143,13 @@ def main():
             size = ", plot data %.0f kB" % (n / 1024.0)
         print("recorded %s (%s, %d checks, run %s%s)" % (rec["case"], rec.get("status"), len(rec.get("checks", [])),
                                                          rec.get("date"), size))
+        for ch in rec.get("checks", []):
+            if ch.get("audit") and ch.get("kind") in ("reproduction", "validation"):
+                print("  VACUOUS %s %s: %s (`cutbench audit`, a ctest gate, fails on this record)"
+                      % (rec["case"], ch.get("key"), ch["audit"]), file=sys.stderr)
+                vacuous += 1
+    if vacuous:
+        sys.exit(1)
 
 
 if __name__ == "__main__":

@@ -127,8 +127,10 @@ struct Bar {
 using Scheme = Numerics::StrainUpdate;
 const char* scheme_name(Scheme s) { return s == Scheme::usl ? "USL" : s == Scheme::musl ? "MUSL" : "USAVG"; }
 
-MpmProblem make_bar(const Bar& b, double v0, double pic, bool rollers, Scheme scheme = Scheme::usl) {
+MpmProblem make_bar(const Bar& b, double v0, double pic, bool rollers, Scheme scheme = Scheme::usl,
+                    double leave_limit = 0.01) {
   MpmConfig cfg;
+  cfg.numerics.leave_limit = leave_limit;
   cfg.grid.dx = b.dx;
   cfg.grid.x0 = -3 * b.dx;
   cfg.grid.y0 = -3 * b.dx;
@@ -429,9 +431,32 @@ BOOST_AUTO_TEST_CASE(fault_names_nonfinite_and_escaped_particles) {
   BOOST_TEST(f.find("non-finite") != std::string::npos);
   BOOST_TEST(f.find("step 2") != std::string::npos);
 
-  MpmProblem esc = make_bar(b, 10.0, 0.0, false);
-  esc.set_velocity(0, 1e9, 0.0);  // leaves the grid in one step
-  esc.step();
-  esc.step();
-  BOOST_TEST(esc.fault().find("left the grid") != std::string::npos);
+  // NairnMPM's rule: a particle that leaves the grid is returned into it and counted once; the run
+  // stops when more than leave_limit of the deformable particles have left (0: at the first one).
+  // A huge velocity on one particle sends it and its grid neighbours (order-0 update) off the grid.
+  auto launch = [&](double limit) {
+    MpmProblem run = make_bar(b, 10.0, 0.0, false, Scheme::usl, limit);
+    run.set_velocity(0, 1e9, 0.0);
+    run.step();
+    run.step();
+    return run;
+  };
+  MpmProblem loose = launch(0.5);
+  const long left = loose.frozen();
+  BOOST_TEST(left > 0);
+  BOOST_TEST(static_cast<double>(left) < 0.5 * static_cast<double>(loose.num_deformable()));
+  BOOST_TEST(loose.fault().empty(), loose.fault());
+  for (std::size_t p = 0; p < loose.size(); ++p) {  // returned: every particle has a finite position
+    BOOST_TEST(std::isfinite(loose.position(p).x()));
+  }
+  loose.step();
+  BOOST_TEST(loose.frozen() >= left);  // each particle counted once, however often it leaves
+
+  MpmProblem strict = launch(0.0);
+  BOOST_TEST_MESSAGE(strict.fault());
+  BOOST_TEST(strict.fault().find("particles have left the grid (limit 0 of the") != std::string::npos);
+  MpmProblem tight = launch(static_cast<double>(left - 1) / static_cast<double>(loose.num_deformable()));
+  BOOST_TEST(tight.fault().find("particles have left the grid") != std::string::npos);
+  MpmProblem enough = launch(static_cast<double>(left) / static_cast<double>(loose.num_deformable()));
+  BOOST_TEST(enough.fault().empty(), enough.fault());
 }

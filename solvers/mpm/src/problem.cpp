@@ -66,6 +66,7 @@ void MpmProblem::add_particle(double x, double y, double volume, bool rigid, dou
   rigid_.push_back(rigid ? 1 : 0);
   side_.push_back(cfg_.crack.enabled && y < cfg_.crack.y ? 0 : 1);
   frozen_.push_back(0);
+  left_.push_back(0);
   id_.push_back(id_.size());
 }
 
@@ -166,6 +167,19 @@ int MpmProblem::field_of(double xp, double yp, int side_p, double xi, double yi)
 }
 
 std::string MpmProblem::fault() const {
+  const double limit = cfg_.numerics.leave_limit * static_cast<double>(n_deformable_);
+  if (frozen_count_ > 0 && static_cast<double>(frozen_count_) > limit) {
+    std::ostringstream os;
+    os << frozen_count_ << " particles have left the grid (limit " << cfg_.numerics.leave_limit
+       << " of the " << n_deformable_ << " deformable particles) at step " << steps_ << ", t = " << time_ << " s";
+    for (std::size_t p = 0; p < x_.size(); ++p) {
+      if (left_[p]) {
+        os << "; the first in storage order: particle " << id_[p] << (rigid_[p] ? " (tool)" : "");
+        break;
+      }
+    }
+    return os.str();
+  }
   for (std::size_t p = 0; p < x_.size(); ++p) {
     const bool finite = std::isfinite(x_[p]) && std::isfinite(y_[p]) && std::isfinite(vx_[p]) && std::isfinite(vy_[p]) &&
                         std::isfinite(txx_[p]) && std::isfinite(txy_[p]) && std::isfinite(tyy_[p]) &&
@@ -173,8 +187,8 @@ std::string MpmProblem::fault() const {
     if (!finite || frozen_[p]) {
       std::ostringstream os;
       os << "particle " << id_[p] << (rigid_[p] ? " (tool)" : "") << " at (" << x_[p] << ", " << y_[p] << ") m "
-         << (finite ? "left the grid" : "has a non-finite position, velocity or stress") << " at step " << steps_
-         << ", t = " << time_ << " s";
+         << (finite ? "left the grid and could not be returned" : "has a non-finite position, velocity or stress")
+         << " at step " << steps_ << ", t = " << time_ << " s";
       return os.str();
     }
   }
@@ -182,7 +196,7 @@ std::string MpmProblem::fault() const {
 }
 
 namespace {
-constexpr std::uint64_t kStateVersion = 5;
+constexpr std::uint64_t kStateVersion = 6;
 }  // namespace
 
 void MpmProblem::save_state(BinaryWriter& w) const {
@@ -195,7 +209,7 @@ void MpmProblem::save_state(BinaryWriter& w) const {
                         &bxx_, &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_, &sp_}) {
     w.vec(*v);
   }
-  for (const auto* v : {&rigid_, &side_, &frozen_}) w.pods(*v);
+  for (const auto* v : {&rigid_, &side_, &frozen_, &left_}) w.pods(*v);
   w.pods(id_);
   w.vec(crack_.xc);
   w.pods(crack_.top);
@@ -233,7 +247,7 @@ void MpmProblem::load_state(BinaryReader& r) {
                   &bxy_, &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_, &sp_}) {
     *v = sized(r.vec(), np, "a particle field");
   }
-  for (auto* v : {&rigid_, &side_, &frozen_}) *v = sized(r.pods<std::uint8_t>(), np, "a particle flag");
+  for (auto* v : {&rigid_, &side_, &frozen_, &left_}) *v = sized(r.pods<std::uint8_t>(), np, "a particle flag");
   id_ = sized(r.pods<std::size_t>(), np, "the particle ids");
   const std::size_t ns = crack_.xc.size();
   crack_.xc = sized(r.vec(), ns, "the crack segments");
@@ -260,15 +274,23 @@ void MpmProblem::load_state(BinaryReader& r) {
   extrapolated_ = false;  // the next step extrapolates the loaded particles afresh
 }
 
-bool MpmProblem::compute_shape(std::size_t p) {
+bool MpmProblem::compute_shape(std::size_t p, long& newly_left) {
   const auto& g = cfg_.grid;
   const bool crack = cfg_.crack.enabled;
   if (frozen_[p]) return false;
-  const int i0 = ugimp_axis(x_[p], ugx_, &wx_[3 * p], &dwx_[3 * p]);
-  const int j0 = ugimp_axis(y_[p], ugy_, &wy_[3 * p], &dwy_[3 * p]);
+  int i0 = ugimp_axis(x_[p], ugx_, &wx_[3 * p], &dwx_[3 * p]);
+  int j0 = ugimp_axis(y_[p], ugy_, &wy_[3 * p], &dwy_[3 * p]);
   if (i0 < 0 || j0 < 0 || i0 + 2 > g.nx || j0 + 2 > g.ny || !std::isfinite(x_[p]) || !std::isfinite(y_[p])) {
-    frozen_[p] = 1;  // left the grid: it stops interacting (reported by frozen())
-    return false;
+    if (!std::isfinite(x_[p]) || !std::isfinite(y_[p]) || !return_to_grid(p)) {
+      frozen_[p] = 1;  // a non-finite position, or no valid cell to return to: a fault
+      return false;
+    }
+    if (!left_[p]) {
+      left_[p] = 1;
+      ++newly_left;
+    }
+    i0 = ugimp_axis(x_[p], ugx_, &wx_[3 * p], &dwx_[3 * p]);
+    j0 = ugimp_axis(y_[p], ugy_, &wy_[3 * p], &dwy_[3 * p]);
   }
   i0_[p] = i0;
   j0_[p] = j0;
@@ -289,6 +311,41 @@ bool MpmProblem::compute_shape(std::size_t p) {
   return true;
 }
 
+bool MpmProblem::valid_position(double x, double y) const {
+  const auto& g = cfg_.grid;
+  double w[3], dw[3];
+  const int i0 = ugimp_axis(x, ugx_, w, dw);
+  const int j0 = ugimp_axis(y, ugy_, w, dw);
+  return i0 >= 0 && j0 >= 0 && i0 + 2 <= g.nx && j0 + 2 <= g.ny;
+}
+
+// NairnMPM's ReturnToElement: back along the particle's velocity by one step, or else (NairnMPM:
+// its element's centroid) the nearest point of the grid whose stencils are all inside it, then ten
+// bisections towards where it went, keeping the last valid point.
+bool MpmProblem::return_to_grid(std::size_t p) {
+  const auto& g = cfg_.grid;
+  double ox = x_[p], oy = y_[p];
+  double ix = ox - dt_ * vx_[p], iy = oy - dt_ * vy_[p];
+  if (!valid_position(ix, iy)) {
+    ix = std::clamp(ox, g.x0 + g.dx, g.x0 + (g.nx - 1) * g.dx);
+    iy = std::clamp(oy, g.y0 + g.dx, g.y0 + (g.ny - 1) * g.dx);
+    if (!valid_position(ix, iy)) return false;
+  }
+  for (int pass = 0; pass < 10; ++pass) {
+    const double mx = 0.5 * (ox + ix), my = 0.5 * (oy + iy);
+    if (valid_position(mx, my)) {
+      ix = mx;
+      iy = my;
+    } else {
+      ox = mx;
+      oy = my;
+    }
+  }
+  x_[p] = ix;
+  y_[p] = iy;
+  return true;
+}
+
 template <class Add, class Store>
 void MpmProblem::reduce_node_buffers(std::size_t nfield, Add&& add, Store&& store) {
 #pragma omp for schedule(static)
@@ -306,7 +363,7 @@ void MpmProblem::particles_to_grid(bool with_forces) {
   const std::size_t nsz = nodes_.size();
   const bool ext = cfg_.contact.detection == 2;
   const Eigen::Vector2d na = cfg_.contact.n_above, nb = cfg_.contact.n_below;
-  long frozen = 0;
+  long newly_left = 0;
 #pragma omp parallel num_threads(nthreads_)
   {
     const int tid = thread_id();
@@ -318,13 +375,10 @@ void MpmProblem::particles_to_grid(bool with_forces) {
         buf[i].e0 = buf[i].e1 = rig_field ? kHuge : -kHuge;
       }
     }
-#pragma omp for schedule(static) reduction(+ : frozen)
+#pragma omp for schedule(static) reduction(+ : newly_left)
     for (long pl = 0; pl < np; ++pl) {
       const auto p = static_cast<std::size_t>(pl);
-      if (!compute_shape(p)) {
-        ++frozen;
-        continue;
-      }
+      if (!compute_shape(p, newly_left)) continue;
       const double m = mass_[p];
       const bool rig = rigid_[p] != 0;
       const double v0 = vol0_[p];
@@ -395,7 +449,7 @@ void MpmProblem::particles_to_grid(bool with_forces) {
         },
         [&](std::size_t i, const NodeData& acc) { nodes_[i] = acc; });
   }
-  frozen_count_ = frozen;
+  frozen_count_ += newly_left;
 }
 
 template <class F>
@@ -1045,7 +1099,7 @@ void MpmProblem::sort_particles() {
                   &byy_, &bzz_, &txx_, &txy_, &tyy_, &tzz_, &wp_}) {
     apply_d(*v);
   }
-  for (auto* v : {&rigid_, &side_, &frozen_}) apply_b(*v);
+  for (auto* v : {&rigid_, &side_, &frozen_, &left_}) apply_b(*v);
   for (std::size_t q = 0; q < np; ++q) sscratch_[q] = id_[perm_[q]];
   id_.swap(sscratch_);
 }

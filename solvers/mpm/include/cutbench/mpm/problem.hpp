@@ -59,6 +59,11 @@ struct Numerics {
   double min_mass_fraction = 1e-8;  // nodes lighter than this times a particle mass are empty
   int threads = 0;                  // OpenMP threads (0: omp_get_max_threads())
   int min_particles_per_thread = 3000;  // fewer threads for small problems (barriers dominate)
+  // A particle that leaves the grid is returned into its last cell and counted once (NairnMPM's
+  // ResetElementsTask::ReturnToElement); the run stops as a fault when more than this fraction of
+  // the deformable particles have left (NairnMPM's LeaveLimit, default 1 % of the points). 0: the
+  // first particle that leaves stops the run.
+  double leave_limit = 0.01;
 };
 
 struct ContactSpec {
@@ -203,7 +208,7 @@ public:
   long steps() const { return steps_; }
   std::size_t size() const { return x_.size(); }
   std::size_t num_deformable() const { return n_deformable_; }
-  long frozen() const { return frozen_count_; }
+  long frozen() const { return frozen_count_; }  // particles that left the grid (each counted once)
   int threads() const { return nthreads_; }
   const ContactForces& contact_forces() const { return forces_; }
   double kinetic_energy() const;   // deformable particles
@@ -247,6 +252,8 @@ public:
   double plastic_strain(std::size_t p) const { return alpha_[p]; }
   double jacobian(std::size_t p) const { return J_[p]; }
 
+  // A point whose 3 x 3 stencil of nodes lies inside the grid (where a particle may be).
+  bool valid_position(double x, double y) const;
   // Test hook (fault injection): set a particle's velocity (by current index) between steps.
   void set_velocity(std::size_t p, double vx, double vy) {
     vx_[p] = vx;
@@ -261,7 +268,10 @@ private:
     double e0, e1;  // domain extents along the contact normals (detection 2), see ContactSpec
   };
   int field_of(double xp, double yp, int side_p, double xi, double yi) const;
-  bool compute_shape(std::size_t p);  // false: particle frozen (off the grid)
+  // false: a particle with a non-finite position or none to return it to (frozen, a fault); a
+  // particle off the grid is returned into it and, the first time, added to newly_left
+  bool compute_shape(std::size_t p, long& newly_left);
+  bool return_to_grid(std::size_t p);
   // Mass, momentum and the rigid body's data (and, with_forces, the grid forces) from the particles.
   void particles_to_grid(bool with_forces);
   // USAVG: contact (the tool at its velocity at time t) and boundary conditions on the
@@ -321,7 +331,7 @@ private:
   std::vector<double> wp_;                     // plastic work per particle, J/m
   std::vector<double> sp_;                     // stress power booked per particle, J/m
   std::vector<double> Lxx_, Lxy_, Lyx_, Lyy_;  // USAVG: the velocity gradient of the extrapolation
-  std::vector<std::uint8_t> rigid_, side_, frozen_;
+  std::vector<std::uint8_t> rigid_, side_, frozen_, left_;
   std::vector<std::size_t> id_;
   // shape cache: base nodes, 1D weights and derivatives, field of each of the 9 nodes
   std::vector<int> i0_, j0_;

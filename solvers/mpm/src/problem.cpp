@@ -988,9 +988,7 @@ void MpmProblem::usavg_half(bool first) {
     for (long pl = 0; pl < np; ++pl) {
       const auto p = static_cast<std::size_t>(pl);
       if (frozen_[p] || rigid_[p]) continue;
-      Eigen::Matrix2d L;
-      L << Lxx_[p], Lxy_[p], Lyx_[p], Lyy_[p];
-      update_strain(p, L, h);
+      update_strain(p, stored_L(p), h);
     }
     return;
   }
@@ -1006,9 +1004,7 @@ void MpmProblem::usavg_half(bool first) {
     for (long pl = 0; pl < np; ++pl) {
       const auto p = static_cast<std::size_t>(pl);
       if (frozen_[p] || rigid_[p]) continue;
-      Eigen::Matrix2d L;
-      L << Lxx_[p], Lxy_[p], Lyx_[p], Lyy_[p];
-      update_strain(p, L, h);
+      update_strain(p, stored_L(p), h);
       const double m = mass_[p], v0 = vol0_[p];
       const double sxx = txx_[p] * v0, sxy = txy_[p] * v0, syy = tyy_[p] * v0;
       for (int b = 0; b < 3; ++b) {

@@ -283,6 +283,11 @@ private:
   // USAVG: the strain half-step from the cached velocity gradients and, first = true, the grid
   // forces from the stresses after it.
   void usavg_half(bool first);
+  Eigen::Matrix2d stored_L(std::size_t p) const {  // USAVG: the velocity gradient kept by the extrapolation
+    Eigen::Matrix2d L;
+    L << Lxx_[p], Lxy_[p], Lyx_[p], Lyy_[p];
+    return L;
+  }
   void update_crack_openings();  // per node column, for crack contact
   void cohesive_forces();
   void grid_update();

@@ -52,23 +52,27 @@ case "$method" in
     compute --case kahwash2018/fig06 --case kahwash2018/fig08 --case kahwash2018/fig09 --case kahwash2018/fig10
     ;;
   mpm)
-    # Nairn: every paper-resolution run has 15 particles through the chip (about 30,000 particles,
-    # 200,000 steps, 6e9 particle-steps: 13-14 min on one thread with USL, about 1.43 times that with
-    # USAVG, the cases' scheme). 163 distinct runs = about 25 h on two cores (solvers/mpm/README.md,
-    # "Paper-resolution campaign"). Order: the
-    # paper's central claims first (Fig 4, the Fig 9 pair, the Fig 3 resolution study, the Fig 8
-    # transition and touching forces), then the sweeps that share their runs, then the rest. Two
+    # Nairn: every paper-resolution run has 15 particles through the chip (about 30,000 particles;
+    # 162,000 steps at the time step of NairnMPM's default factor 0.5, whatever the depth of cut: the
+    # geometry, the run length and the step all scale with h), about 4.9e9 particle-steps, 20-25 min
+    # on one thread of this machine with USAVG. 88 distinct runs, 78.8 runs' worth of N = 15 work
+    # (solvers/mpm/README.md, "Paper-resolution campaign"). Order: the paper's central claims first
+    # (Fig 4, whose run Figs 2, 3 and 5 share; the Fig 9 pair), then the Fig 8 transition sweep at
+    # alpha = 30 deg (shared by Figs 9-12) with the cheap N = 4 and 8 convergence runs, the other rake
+    # angles (Figs 8, 10, 16), friction (Figs 11, 15), hardening (Figs 12, 13), sigma_c (Fig 14),
+    # Fig 16's own bending runs, and the N = 20 convergence runs (2.4 runs' worth each) last. Two
     # copies of this script (one per core, started a few seconds apart) work through it together:
     # the run store's locks keep them on different runs, and each leaves to the other the runs it
     # is computing (--skip-running).
     compute --case nairn2015/fig04 --case nairn2015/fig09
-    compute --case nairn2015/fig03
-    compute --case nairn2015/fig08
-    compute --case nairn2015/fig02 --case nairn2015/fig05 --case nairn2015/fig17
-    compute --case nairn2015/fig10 --case nairn2015/fig13
+    compute --case nairn2015/fig03 --case nairn2015/fig02 --case nairn2015/fig05 --case nairn2015/fig17
+    compute --case nairn2015/fig08 --series mpm --series convergence_n4 --series convergence_n8
+    compute --case nairn2015/fig08 --series mpm_a5 --series mpm_a15 --series mpm_a45
+    compute --case nairn2015/fig10
     compute --case nairn2015/fig11 --case nairn2015/fig15
+    compute --case nairn2015/fig12 --case nairn2015/fig13
     compute --case nairn2015/fig14 --case nairn2015/fig16
-    compute --case nairn2015/fig12
+    compute --case nairn2015/fig08
     ;;
   *)
     echo "usage: scripts/full-tier-campaign.sh sph|efg|mpm [cutbench executable]" >&2

@@ -104,7 +104,7 @@ BOOST_AUTO_TEST_CASE(mpm_block_debonding_energy_balance) {
   cfg.numerics.pic_fraction = 0.0;
   cfg.numerics.position_order = 0;
   // USL: the strain rate from the grid velocities; with FLIP the re-extrapolating schemes add
-  // particle-velocity noise at the block edges to it (lost 17.1 J/m with MUSL, 17.9 with USAVG,
+  // particle-velocity noise at the block edges to it (lost 17.1 J/m with MUSL, 17.9 with USAVG at cfl 0.4,
   // solvers/mpm/README.md), which is not what this test isolates
   cfg.numerics.strain_update = Numerics::StrainUpdate::usl;
   cfg.crack.enabled = true;
@@ -135,6 +135,14 @@ BOOST_AUTO_TEST_CASE(mpm_block_debonding_energy_balance) {
               eb.kinetic, eb.strain, eb.plastic, eb.cohesive, eb.audit.pic_damping, eb.residual);
   BOOST_TEST(failed == pb.crack().state.size());
   BOOST_TEST(pb.released_energy() == Gc * L, tt::tolerance(0.02));
-  BOOST_TEST(e0 - ef == Gc * L, tt::tolerance(0.05));
+  // The kinetic energy lost is the fracture energy plus the scheme's numerical terms, which the
+  // audit measures (chiefly the cohesive lag: the explicit step applies each traction for a whole
+  // step, so the cohesive work runs ahead of the traction law's energy, in proportion to the step).
+  // Measured here: e0 - ef = 17.48 / 19.34 / 20.78 / 21.89 J/m at cfl = 0.5 / 0.4 / 0.3 / 0.1 with
+  // numerical terms of -2.53 / -0.66 / 0.78 / 1.89 J/m (cohesive lag -4.28 ... -0.04); e0 - ef alone
+  // is near G_c L only where the terms cancel (cfl 0.35-0.4), so it is checked with them.
+  BOOST_TEST(e0 - ef - eb.numerical == Gc * L, tt::tolerance(0.01));
+  // judgement: the numerical terms a fifth of the fracture energy at most (0.13 at cfl = 0.5)
+  BOOST_TEST(std::fabs(eb.numerical) <= 0.2 * Gc * L);
   BOOST_TEST(pb.mode1_fraction() > 0.9);
 }

@@ -189,7 +189,7 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
         // at most NairnMPM's default time-step factor (0.5 of the cell crossing time): the explicit
         // update with GIMP shape functions, contact and large strains diverges well before the
         // linear limit 1 (cfl = 0.99 sends particles off the grid)
-        .add(param("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.4, 0.0, 0.5, false),
+        .add(param("cfl", Dim::dimensionless, "time step / (dx / c_p)", 0.5, 0.0, 0.5, false),
              [](S& s, double v) { s.numerics.cfl = v; })
         // NairnMPM's LeaveLimit (default: 1 % of the material points): a particle that leaves the
         // grid is returned into it and counted once; more than this fraction stops the run

@@ -54,7 +54,7 @@ struct Numerics {
   // Diagnostic (musl): false skips the contact re-applied to the re-extrapolated momenta
   // (boundary conditions are still applied), to separate MUSL's two ingredients.
   bool musl_recontact = true;
-  double cfl = 0.4;           // dt = cfl * dx / c_p
+  double cfl = 0.5;           // dt = cfl * dx / (c_p + tool speed); 0.5: NairnMPM's default FractCellTime
   int sort_interval = 50;     // steps between particle sorts by cell (0 = never)
   double min_mass_fraction = 1e-8;  // nodes lighter than this times a particle mass are empty
   int threads = 0;                  // OpenMP threads (0: omp_get_max_threads())

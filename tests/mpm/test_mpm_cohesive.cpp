@@ -142,7 +142,9 @@ BOOST_AUTO_TEST_CASE(mpm_block_debonding_energy_balance) {
   // numerical terms of -2.53 / -0.66 / 0.78 / 1.89 J/m (cohesive lag -4.28 ... -0.04); e0 - ef alone
   // is near G_c L only where the terms cancel (cfl 0.35-0.4), so it is checked with them.
   BOOST_TEST(e0 - ef - eb.numerical == Gc * L, tt::tolerance(0.01));
-  // judgement: the numerical terms a fifth of the fracture energy at most (0.13 at cfl = 0.5)
+  // Looser than the former 5 % on e0 - ef, which bounded these terms only where they cancel: a
+  // judgement that the scheme's own terms stay a small part of the fracture energy; measured 0.03 to
+  // 0.13 of G_c L over cfl 0.1-0.5, and not vanishing as the step falls (the increment loss stays).
   BOOST_TEST(std::fabs(eb.numerical) <= 0.2 * Gc * L);
   BOOST_TEST(pb.mode1_fraction() > 0.9);
 }

@@ -37,9 +37,10 @@ case "$method" in
   efg)
     # Kahwash, the paper's failure model (no erosion): every run goes on to the critical-time-step
     # drop, 50-150 um of travel, while the squeezed degraded chip lowers the step to 1-2 % of its
-    # initial value. Measured: the smallest node-study mesh (2,574 nodes, LaRC02 30 deg) took 70,686
-    # steps and 845 s on one niced thread beside three other jobs (completion at 104 um); a
-    # 12,015-node run is of the order of an hour on one thread. Order: the node study, then Hashin
+    # initial value. Measured with the time-step factor 0.9: the smallest node-study mesh (2,574
+    # nodes, LaRC02 30 deg) takes 42,067 steps, about 75 s on an idle thread (completion at 105 um);
+    # with the factor 0.5 the node study's 10,894-node run took 403,528 steps, so a 12,015-node run
+    # is of the order of half an hour to an hour on one thread. Order: the node study, then Hashin
     # and the time-scaling points, the snapshot runs of Figs 6-8, LaRC02, and maximum stress last.
     compute --case kahwash2018/table2 --case kahwash2018/table6
     compute --case kahwash2018/table4 --series efg_hashin --series time_scaling

@@ -277,7 +277,9 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
                               {{"always", "at any drop"}, {"damaged_path", "once damaged Gauss points connect the edge and the free surface"},
                                {"eroded_path", "once eroded Gauss points ahead of the edge connect the edge and the free surface"}},
                               "damaged_path"), &S::completion_guard)
-        .bind(p("cfl", Dim::dimensionless, "time step / (min nodal distance / c_max)", 0.5, 0.01, 1.0), &S::cfl)
+        .bind(p("cfl", Dim::dimensionless,
+                "time step / (min nodal distance / c_max): the reduction factor of Belytschko, Liu & Moran (2000), 0.8-0.98",
+                S{}.cfl, 0.01, 1.0), &S::cfl)
         .bind(integer_param("snapshots", "damage snapshots kept (k/n of the run)", 3, 0, 20), &S::snapshots);
     return decl;
   }();

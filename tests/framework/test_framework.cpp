@@ -217,6 +217,22 @@ tolerance = 1e-9
 units = "mm"
 source = "last row of nairn2015/fig03.csv: h = 0.9 mm"
 
+[[series]]
+name = "down"
+model = "toy_linear"
+params = { a = -3 }
+sweep = { param = "x", from = "0 mm", to = "10 mm", n = 11 }
+
+[[checks]]
+key = "max_abs"
+kind = "verification"
+metric = "absolute"
+value = { series = "down", output = "y", reduce = "max_abs" }
+reference = 30
+tolerance = 1e-9
+units = "mm"
+source = "exact: |y| = 3 x reaches 30 mm at x = 10 mm while max(y) = 0"
+
 [[checks]]
 key = "curve"
 kind = "verification"
@@ -239,6 +255,7 @@ source = "identity"
   BOOST_TEST(st["not_applicable"] == "NOT RUN");
   BOOST_TEST(st["curve"] == "PASS");
   BOOST_TEST(st["ref_row_from_end"] == "PASS");  // negative rows count from the end
+  BOOST_TEST(st["max_abs"] == "PASS");           // the largest magnitude of a negative series
   BOOST_TEST(r.status == "FAIL");  // abs_fail is not a known failure
   const fs::path bad = write_case("toy_bad_row", R"(status = "implemented"
 [[series]]

@@ -255,6 +255,11 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
   if (reduce == "mean") return mean;
   if (reduce == "max") return *std::max_element(ys.begin(), ys.end());
   if (reduce == "min") return *std::min_element(ys.begin(), ys.end());
+  if (reduce == "max_abs") {
+    double m = 0.0;
+    for (double v : ys) m = std::max(m, std::abs(v));
+    return m;
+  }
   if (reduce == "first") return ys.front();
   if (reduce == "last") return ys.back();
   if (reduce == "std" || reduce == "cv") {
@@ -263,7 +268,7 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
     const double sd = std::sqrt(ss / std::max(1.0, n - 1));
     return reduce == "std" ? sd : sd / std::abs(mean);
   }
-  throw InputError(field + ".reduce", "unknown reduction '" + reduce + "' (mean, max, min, first, last, std, cv)");
+  throw InputError(field + ".reduce", "unknown reduction '" + reduce + "' (mean, max, min, max_abs, first, last, std, cv)");
 }
 
 // Reference value in SI (or throws NotRun for an explicitly unavailable reference).

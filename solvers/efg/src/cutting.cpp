@@ -315,6 +315,7 @@ public:
       r_.Ft_mean = acc_all_.y() / tacc_all_;
     }
     take_snapshot();  // the final state
+    audit();
     if (s_.snapshots > 0) {
       const double tr_end = cand_.back().travel;
       for (int k = 1; k <= s_.snapshots; ++k) {
@@ -381,6 +382,12 @@ private:
     r_.Fc.push_back(-acc_.x() / tacc_);  // resistance of the workpiece to the tool's advance
     r_.Ft.push_back(acc_.y() / tacc_);   // thrust: pushes the tool away from the workpiece (+y)
     r_.dt.push_back(dt);
+    audit();
+    r_.e_tool.push_back(r_.energy_tool);
+    r_.e_kinetic.push_back(r_.energy_kinetic);
+    r_.e_strain.push_back(r_.energy_strain);
+    r_.e_damage.push_back(r_.energy_damage);
+    r_.e_residual.push_back(r_.energy_residual);
     r_.Fc_peak = std::max(r_.Fc_peak, r_.Fc.back());
     acc_.setZero();
     tacc_ = 0.0;
@@ -415,6 +422,20 @@ private:
     }
   }
 
+  // The energy ledger now (J/m: the model is 1 m thick, as the forces are per unit width): what
+  // the contact impulses gave the nodes against kinetic, strain and damage energy.
+  void audit() {
+    const auto& lg = solver_.energy_ledger();
+    r_.energy_tool = lg.tool_work;
+    r_.energy_kinetic = solver_.kinetic_energy();
+    r_.energy_strain = solver_.strain_energy();
+    r_.energy_damage = solver_.damage_dissipation();
+    r_.energy_contact_loss = lg.tool_work - lg.contact_work;
+    r_.energy_released = -lg.release_kinetic;
+    r_.energy_internal = lg.internal_work;
+    r_.energy_residual = lg.contact_work + lg.release_kinetic - r_.energy_kinetic - r_.energy_strain - r_.energy_damage;
+  }
+
   void take_snapshot() {
     CuttingSnapshot sn;
     sn.t = solver_.time();
@@ -438,7 +459,9 @@ private:
                     &self.r_.Fc_peak, &self.r_.travel_first_failure, &self.r_.Fc_first_failure, &self.r_.travel_path,
                     &self.r_.travel_separated})
       f64(*p);
-    for (auto* v : {&self.r_.t, &self.r_.travel, &self.r_.Fc, &self.r_.Ft, &self.r_.dt}) vec(*v);
+    for (auto* v : {&self.r_.t, &self.r_.travel, &self.r_.Fc, &self.r_.Ft, &self.r_.dt, &self.r_.e_tool,
+                    &self.r_.e_kinetic, &self.r_.e_strain, &self.r_.e_damage, &self.r_.e_residual})
+      vec(*v);
   }
 
   const CuttingSetup& s_;

@@ -52,6 +52,7 @@ ExplicitEFG::ExplicitEFG(const Discretisation& d, const Orthotropic& mat, double
                            " (node outside the integration domain or too small a support)");
     }
   }
+  dgp_.assign(gp_.size(), 0.0);
   compute_internal_forces();
   for (std::size_t I = 0; I < n; ++I) a_[I] = (fext_[I] - fint_[I]) / mass_[I];
   dmin0_ = min_active_distance();
@@ -125,17 +126,24 @@ void ExplicitEFG::first_piola(GP& q, Mat2& P, bool small, bool failure) {
     Finc += (x_[I] - xr_[I]) * dphi.transpose();
   }
   q.F = Finc * q.Fr;
+  double& released = dgp_[static_cast<std::size_t>(&q - gp_.data())];
+  // a degradation releases the strain energy the lost stiffness held at this strain
+  auto degrade = [&]() {
+    const double w_before = q.E.dot(q.S);
+    q.S = q.Qd * q.E;
+    released += 0.5 * q.Vr / q.Fr.determinant() * (w_before - q.E.dot(q.S));
+  };
   if (small) {
     const Mat2 H = q.F - Mat2::Identity();
     q.E = Eigen::Vector3d(H(0, 0), H(1, 1), H(0, 1) + H(1, 0));
     q.S = (q.degraded ? q.Qd : Qbar_) * q.E;
-    if (failure && update_damage(q)) q.S = q.Qd * q.E;
+    if (failure && update_damage(q)) degrade();
     P = voigt_to_tensor(q.S);
   } else {
     const Mat2 C = q.F.transpose() * q.F;
     q.E = Eigen::Vector3d(0.5 * (C(0, 0) - 1.0), 0.5 * (C(1, 1) - 1.0), C(0, 1));  // engineering shear
     q.S = (q.degraded ? q.Qd : Qbar_) * q.E;
-    if (failure && update_damage(q)) q.S = q.Qd * q.E;
+    if (failure && update_damage(q)) degrade();
     const Mat2 S = voigt_to_tensor(q.S);
     P = Finc * (q.Fr * S * q.Fr.transpose()) / q.Fr.determinant();
   }
@@ -143,6 +151,7 @@ void ExplicitEFG::first_piola(GP& q, Mat2& P, bool small, bool failure) {
     const bool f = q.index[fibre_damage] >= 1.0, m = q.index[matrix_damage] >= 1.0;
     if (opt_.erosion == Erosion::fibre_and_matrix ? (f && m) : (f || m)) {
       q.eroded = true;
+      released += 0.5 * q.Vr / q.Fr.determinant() * q.E.dot(q.S);
       q.S.setZero();
       P.setZero();
 #pragma omp atomic write
@@ -307,6 +316,7 @@ void ExplicitEFG::set_damage(std::size_t g, const std::array<double, 3>& damage,
 void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
   tool_force_.setZero();
   ncontact_ = nstick_ = 0;
+  impulses_.clear();
   if (!has_tool_) return;
   const std::size_t nv = tool_.vertices.size();
   const Vec2 shift = tool_.displacement(t_ + dt);  // tool at t^{n+1}
@@ -356,6 +366,8 @@ void ExplicitEFG::apply_contact(double dt, std::vector<Vec2>& vhalf) {
     const Vec2 fc = fn * n + ft * t;  // Eqs 42-43
     // Contact force in a^n of Eq 48: v^{n+1/2} += dt/2 f/M (so x^{n+1} moves by dt^2/2 f/M = g n).
     vhalf[I] += 0.5 * dt * fc / M;
+    ledger_.tool_work += 0.5 * dt * fc.dot(vtool);
+    impulses_.emplace_back(static_cast<int>(I), Vec2(0.5 * dt * fc));
     // Momentum given to the node in the step: dt/2 fc, i.e. a mean force fc/2 over dt. The tool
     // force is reported from that impulse (in steady contact it equals the pressing force, while
     // the Eq 39 value is twice it).
@@ -380,6 +392,7 @@ void ExplicitEFG::update_release() {
     if (!carried[I]) active_[I] = 0;  // irreversible
     if (!active_[I]) {
       ++nreleased_;
+      ledger_.release_kinetic -= 0.5 * mass_[I] * v_[I].squaredNorm();
       v_[I].setZero();
       a_[I].setZero();
     }
@@ -489,6 +502,7 @@ bool ExplicitEFG::erode_collapsed() {
         GP& q = gp_[node_gp_[k]];
         if (!q.eroded) {
           q.eroded = true;
+          dgp_[static_cast<std::size_t>(node_gp_[k])] += 0.5 * q.Vr / q.Fr.determinant() * q.E.dot(q.S);
           q.S.setZero();
           ++ncollapse_;
         }
@@ -525,7 +539,14 @@ void ExplicitEFG::step(double dt) {
   for (std::size_t I = 0; I < n; ++I) x_[I] += dt * v_[I];  // Eq 49
   t_ += dt;
   ++nstep_;
+  // energy ledger: the impulses and the internal forces at both ends of the step do work over
+  // the step's displacement dt v^{n+1/2}
+  for (const auto& [I, J] : impulses_) ledger_.contact_work += J.dot(v_[I]);
+  double w_int = 0.0;
+  for (std::size_t I = 0; I < n; ++I) w_int += v_[I].dot(fint_[I]);
   compute_internal_forces();
+  for (std::size_t I = 0; I < n; ++I) w_int += v_[I].dot(fint_[I]);
+  ledger_.internal_work += 0.5 * dt * w_int;
   if (opt_.kinematics == Kinematics::updated_lagrangian && nstep_ % opt_.update_interval == 0) {
     update_reference();
   }
@@ -568,7 +589,7 @@ struct GPState {
   char eroded;
   char degraded;
 };
-constexpr std::uint64_t kStateVersion = 3;
+constexpr std::uint64_t kStateVersion = 4;
 }  // namespace
 
 void ExplicitEFG::save_state(BinaryWriter& w) const {
@@ -604,7 +625,10 @@ void ExplicitEFG::save_state(BinaryWriter& w) const {
                           static_cast<std::uint64_t>(ncontact_), static_cast<std::uint64_t>(nstick_),
                           static_cast<std::uint64_t>(erosion_changed_)})
     w.u64(u);
-  for (double d : {t_, tool_force_.x(), tool_force_.y()}) w.f64(d);
+  for (double d : {t_, tool_force_.x(), tool_force_.y(), ledger_.tool_work, ledger_.contact_work,
+                   ledger_.internal_work, ledger_.release_kinetic})
+    w.f64(d);
+  w.pods(dgp_);
 }
 
 void ExplicitEFG::load_state(BinaryReader& r) {
@@ -648,6 +672,11 @@ void ExplicitEFG::load_state(BinaryReader& r) {
   t_ = r.f64();
   tool_force_.x() = r.f64();
   tool_force_.y() = r.f64();
+  ledger_.tool_work = r.f64();
+  ledger_.contact_work = r.f64();
+  ledger_.internal_work = r.f64();
+  ledger_.release_kinetic = r.f64();
+  dgp_ = sized(r.pods<double>(), ng);
   std::vector<std::size_t> ids(ng);
   for (std::size_t g = 0; g < ng; ++g) ids[g] = g;
   auto sf = gauss_shapes(ids);
@@ -664,6 +693,12 @@ double ExplicitEFG::kinetic_energy() const {
 double ExplicitEFG::strain_energy() const {
   double e = 0.0;
   for (const auto& q : gp_) e += 0.5 * q.Vr / q.Fr.determinant() * q.E.dot(q.S);
+  return e;
+}
+
+double ExplicitEFG::damage_dissipation() const {
+  double e = 0.0;
+  for (double d : dgp_) e += d;
   return e;
 }
 

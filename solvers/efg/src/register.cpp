@@ -331,7 +331,16 @@ std::vector<OutputSpec> cutting_scalars() {
                  {"rake_used", Dim::angle, "rake angle used"},
                  {"speed_used", Dim::velocity, "paper cutting speed (before time scaling)"},
                  {"speed_run", Dim::velocity, "speed at which the tool moved (speed x time_scale)"},
-                 {"wave_speed", Dim::velocity, "Eq 55 c_max = sqrt(C11/rho)"}};
+                 {"wave_speed", Dim::velocity, "Eq 55 c_max = sqrt(C11/rho)"},
+                 {"energy_tool_work", Dim::force_per_width, "energy audit: work of the tool's contact impulses (J/m)"},
+                 {"energy_kinetic", Dim::force_per_width, "energy audit: kinetic energy at the end (J/m)"},
+                 {"energy_strain", Dim::force_per_width, "energy audit: strain energy at the end, degraded stiffness (J/m)"},
+                 {"energy_damage", Dim::force_per_width, "energy audit: strain energy released by stiffness degradation and erosion (J/m)"},
+                 {"energy_contact_loss", Dim::force_per_width, "energy audit: tool work the contact's inelastic impulses dissipate (J/m)"},
+                 {"energy_internal_work", Dim::force_per_width, "energy audit: work of the internal forces, dx.(f^n + f^{n+1})/2 summed over the steps (J/m)"},
+                 {"energy_released", Dim::force_per_width, "energy audit: kinetic energy of released nodes (erosion; J/m)"},
+                 {"energy_residual", Dim::force_per_width, "energy audit: tool work - contact loss - released - kinetic - strain - damage (J/m)"},
+                 {"energy_residual_fraction", Dim::dimensionless, "energy audit: residual / tool work"}};
 }
 
 CuttingSetup cutting_setup_from(const Values& v) {
@@ -354,6 +363,16 @@ RunOutput cutting_output(const CuttingSetup& s, const CuttingResult& r, double w
   t.add("F_t", "N/m", r.Ft);
   t.add("dt", "s", r.dt);
   out.tables.push_back(t);
+  Table e;
+  e.name = "energy";
+  e.add("t", "s", r.t);
+  e.add("travel", "m", r.travel);
+  e.add("tool_work", "J/m", r.e_tool);
+  e.add("kinetic", "J/m", r.e_kinetic);
+  e.add("strain", "J/m", r.e_strain);
+  e.add("damage", "J/m", r.e_damage);
+  e.add("residual", "J/m", r.e_residual);
+  out.tables.push_back(e);
   for (const auto& sn : r.snapshots) {
     Snapshot snap;
     snap.time = sn.t;
@@ -408,8 +427,20 @@ RunOutput cutting_output(const CuttingSetup& s, const CuttingResult& r, double w
                  {"rake_used", s.rake},
                  {"speed_used", s.speed},
                  {"speed_run", s.speed * s.time_scale},
-                 {"wave_speed", m.wave_speed()}};
+                 {"wave_speed", m.wave_speed()},
+                 {"energy_tool_work", r.energy_tool},
+                 {"energy_kinetic", r.energy_kinetic},
+                 {"energy_strain", r.energy_strain},
+                 {"energy_damage", r.energy_damage},
+                 {"energy_contact_loss", r.energy_contact_loss},
+                 {"energy_internal_work", r.energy_internal},
+                 {"energy_released", r.energy_released},
+                 {"energy_residual", r.energy_residual},
+                 {"energy_residual_fraction", r.energy_tool > 0.0 ? r.energy_residual / r.energy_tool : nan_value()}};
   out.scalar_units = {{"F_c", "N/m"}, {"F_t", "N/m"}, {"F_c_peak", "N/m"}, {"F_c_first_failure", "N/m"}, {"t_contact", "s"}, {"t_complete", "s"}};
+  for (const char* k : {"energy_tool_work", "energy_kinetic", "energy_strain", "energy_damage", "energy_contact_loss",
+                        "energy_internal_work", "energy_released", "energy_residual"})
+    out.scalar_units[k] = "J/m";
   // the failure model of this run: the declared descriptions of the options it ran with
   const std::vector<ParamSpec> specs = cutting_params();
   auto chosen = [&specs](const char* name, int index) {
@@ -441,7 +472,16 @@ SolverSpec cutting_spec() {
                   {"travel", "m", "tool travel after first contact"},
                   {"F_c", "N/m", "cutting force per unit width"},
                   {"F_t", "N/m", "thrust force per unit width"},
-                  {"dt", "s", "critical time step (Eq. 56)"}}}};
+                  {"dt", "s", "critical time step (Eq. 56)"}}},
+                {"energy",
+                 "energy audit at the end of each force window (solvers/efg/README.md, \"Energy audit\")",
+                 {{"t", "s", "time"},
+                  {"travel", "m", "tool travel after first contact"},
+                  {"tool_work", "J/m", "work of the tool's contact impulses"},
+                  {"kinetic", "J/m", "kinetic energy"},
+                  {"strain", "J/m", "strain energy (degraded stiffness)"},
+                  {"damage", "J/m", "strain energy released by degradation and erosion"},
+                  {"residual", "J/m", "residual of the ledger"}}}};
   cut.scalars = cutting_scalars();
   cut.checkpoints = true;
   cut.footprint = [](const Values& v) {

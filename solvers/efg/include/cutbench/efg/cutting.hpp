@@ -85,6 +85,11 @@ struct CuttingSnapshot {
 
 struct CuttingResult {
   std::vector<double> t, travel, Fc, Ft, dt;  // per-width forces (N/m) averaged over each window
+  // Energy audit per window end (J/m): the tool's work, kinetic, strain and damage energy, and the
+  // residual of the ledger (ExplicitEFG::EnergyLedger); the final values below.
+  std::vector<double> e_tool, e_kinetic, e_strain, e_damage, e_residual;
+  double energy_tool = 0.0, energy_kinetic = 0.0, energy_strain = 0.0, energy_damage = 0.0;
+  double energy_contact_loss = 0.0, energy_released = 0.0, energy_internal = 0.0, energy_residual = 0.0;
   double t_contact = -1.0;              // first contact
   double t_contact_expected = 0.0;      // initial gap / speed
   double Fc_mean = 0.0, Ft_mean = 0.0;  // mean from first contact to the end of the run

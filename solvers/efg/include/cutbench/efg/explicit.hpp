@@ -226,7 +226,21 @@ public:
   // Recomputes stresses and internal forces at the current positions (no time advance).
   void refresh() { compute_internal_forces(); }
   double kinetic_energy() const;
-  double strain_energy() const;
+  double strain_energy() const;  // sum of V0 E.S/2 over the Gauss points (degraded stiffness)
+  // Energy ledger (solvers/efg/README.md, "Energy audit"), accumulated over the steps:
+  //  - tool_work: the tool's contact impulses J times the tool's velocity (what the tool spends);
+  //  - contact_work: the same impulses times the velocity the node then moves with, J . v^{n+1/2}
+  //    (what the nodes receive; tool_work - contact_work is the contact's friction and impact loss);
+  //  - internal_work: the work of the internal forces over each step, dx . (f^n + f^{n+1}) / 2;
+  //  - release_kinetic: kinetic energy of nodes released by erosion (set to zero; <= 0).
+  // The central-difference scheme then closes contact_work + release_kinetic = kinetic +
+  // internal_work up to O(dt^2), and internal_work = strain + damage_dissipation up to the time
+  // integration and the changes of the shape functions (reference updates, the visibility cut).
+  struct EnergyLedger {
+    double tool_work = 0.0, contact_work = 0.0, internal_work = 0.0, release_kinetic = 0.0;
+  };
+  const EnergyLedger& energy_ledger() const { return ledger_; }
+  double damage_dissipation() const;
   const Orthotropic& material() const { return mat_; }
   // Checkpoints of long runs: the state between two steps (nodes, Gauss points, released nodes,
   // counters, opaque segments, last contact force). load_state expects an object built with the
@@ -304,6 +318,9 @@ private:
   mutable std::vector<Vec2> xactive_;  // scratch for the time step (capacity kept)
   double t_ = 0.0;
   long nstep_ = 0;
+  EnergyLedger ledger_;
+  std::vector<double> dgp_;  // per Gauss point: strain energy released by degradation and erosion
+  std::vector<std::pair<int, Vec2>> impulses_;  // contact impulses of the present step (node, J)
 };
 
 }  // namespace cutbench::efg

@@ -126,12 +126,12 @@ void ExplicitEFG::first_piola(GP& q, Mat2& P, bool small, bool failure) {
     Finc += (x_[I] - xr_[I]) * dphi.transpose();
   }
   q.F = Finc * q.Fr;
-  double& released = dgp_[static_cast<std::size_t>(&q - gp_.data())];
+  double& damage_energy = dgp_[static_cast<std::size_t>(&q - gp_.data())];
   // a degradation releases the strain energy the lost stiffness held at this strain
   auto degrade = [&]() {
     const double w_before = q.E.dot(q.S);
     q.S = q.Qd * q.E;
-    released += 0.5 * q.Vr / q.Fr.determinant() * (w_before - q.E.dot(q.S));
+    damage_energy += 0.5 * q.Vr / q.Fr.determinant() * (w_before - q.E.dot(q.S));
   };
   if (small) {
     const Mat2 H = q.F - Mat2::Identity();
@@ -151,7 +151,7 @@ void ExplicitEFG::first_piola(GP& q, Mat2& P, bool small, bool failure) {
     const bool f = q.index[fibre_damage] >= 1.0, m = q.index[matrix_damage] >= 1.0;
     if (opt_.erosion == Erosion::fibre_and_matrix ? (f && m) : (f || m)) {
       q.eroded = true;
-      released += 0.5 * q.Vr / q.Fr.determinant() * q.E.dot(q.S);
+      damage_energy += 0.5 * q.Vr / q.Fr.determinant() * q.E.dot(q.S);
       q.S.setZero();
       P.setZero();
 #pragma omp atomic write

@@ -236,6 +236,8 @@ public:
   // The central-difference scheme then closes contact_work + release_kinetic = kinetic +
   // internal_work up to O(dt^2), and internal_work = strain + damage_dissipation up to the time
   // integration and the changes of the shape functions (reference updates, the visibility cut).
+  // Not booked: constant external forces and non-zero prescribed velocities (the cutting model has
+  // neither: its held nodes do not move and do no work).
   struct EnergyLedger {
     double tool_work = 0.0, contact_work = 0.0, internal_work = 0.0, release_kinetic = 0.0;
   };

@@ -420,6 +420,51 @@ BOOST_AUTO_TEST_CASE(chip_back_stream_angle_eta1) {
   BOOST_CHECK_THROW(cutting_model(bad), cutbench::InputError);
 }
 
+BOOST_AUTO_TEST_CASE(curled_free_chip) {
+  // The curl of the free chip beyond l (CuttingSetup::curl, our extension of Fig. 5): the chip swept
+  // by C-D1 turning rigidly about one centre. (1) The fluxes of the curled chip still add up to the
+  // inflow (its arcs and its turned end are classified). (2) Frictionless, alpha = 0, phi = 45 deg,
+  // l = t1, the straight chip is the exact steady state: with eta2 = 0 and a curl the free chip
+  // starts along the flow (start angle near 0) and its end is turned by the curl against the
+  // straight-moving material (exit angle about -curl); the fit of eta2 and the curl returns to the
+  // straight chip. (3) A curl that puts its centre inside the chip is refused.
+  for (double curl : {-0.6, 0.4}) {
+    CuttingSetup c = turned_chip(0.0, -0.1);
+    c.curl = curl;
+    const auto r = solve_cutting(c);
+    const double total = r.flux_top + r.flux_back + r.flux_end + r.flux_rake_free;
+    BOOST_TEST_MESSAGE("curl=" << curl << " fluxes top " << r.flux_top << " back " << r.flux_back << " (free " << r.flux_back_free
+                               << ") end " << r.flux_end << " rake " << r.flux_rake_free << " (free " << r.flux_tool_free
+                               << ") total " << total << " face length " << r.free_face_length);
+    BOOST_TEST(std::abs(total - 1.0) < 1e-6);
+    BOOST_TEST(r.free_face_length > 0.7 * c.chip_extra * r.t2);  // the mean of the two arcs (the inner one shorter)
+    BOOST_TEST(r.free_face_length < 1.3 * c.chip_extra * r.t2);
+  }
+  CuttingSetup c;
+  c.n = 6;
+  c.phi = M_PI / 4;
+  c.contact_length = 1.0;
+  for (double curl : {0.3, -0.3}) {
+    c.curl = curl;
+    const auto r = solve_cutting(c);
+    BOOST_TEST_MESSAGE("curl " << curl << ": start angle " << r.chip_start_angle << ", exit angle " << r.chip_exit_angle);
+    BOOST_TEST(std::abs(r.chip_start_angle) < 0.1);
+    BOOST_TEST(std::abs(r.chip_exit_angle + curl) < 0.1);
+  }
+  c.curl = 0.3;
+  c.eta2 = 0.1;
+  const auto fit = fit_stream_angles(c, false, [](const CuttingSetup& cs) { return solve_cutting(cs); }, 10,
+                                     0.25 * M_PI / 180, true);
+  for (std::size_t i = 0; i < fit.curl.size(); ++i)
+    BOOST_TEST_MESSAGE("fit " << i << ": eta2 " << fit.eta2[i] << " start angle " << fit.start_angle[i] << " curl " << fit.curl[i]
+                              << " exit angle " << fit.exit_angle[i]);
+  BOOST_TEST(fit.converged);
+  BOOST_TEST(std::abs(fit.eta2.back()) < 0.01);
+  BOOST_TEST(std::abs(fit.curl.back()) < 0.01);
+  c.curl = 0.95 * c.chip_extra * chip_thickness(c.t1, c.phi, c.alpha) / (c.t1 * 0.5);
+  BOOST_CHECK_THROW(cutting_model(c), cutbench::InputError);
+}
+
 BOOST_AUTO_TEST_CASE(workpiece_block_frictionless_converges_to_merchant) {
   // The paper's domain: the workpiece below the cutting line is meshed and the tool tip is a rake
   // contact node. Frictionless, alpha = 0, phi = 45 deg, l = t1: the single-shear-plane mechanism

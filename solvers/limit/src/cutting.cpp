@@ -89,7 +89,70 @@ Mesh with_block(Mesh m, const CuttingSetup& c, double Lw, const std::vector<doub
   return merge(m, workpiece_block(c, Lw, xw), 1e-9 * c.t1);
 }
 
+
+// The free chip beyond l of a turned chip (η1, η2 or the curl set): its tool-side face from
+// C = l r and its back from D1, as polylines (the two ends of the straight parallelogram; one
+// chord per cell of the curled chip), the grid of the cells along it, and its direction at the end.
+struct FreeChip {
+  std::vector<Vector2d> tool, back;
+  std::vector<double> grid;
+  Vector2d r_end, n_end;  // direction of the chip at its end, and the normal toward the tool side
+};
+
+FreeChip free_chip(const CuttingSetup& c) {
+  const double t1 = c.t1, t2 = chip_thickness(t1, c.phi, c.alpha), l = c.contact_length;
+  const double Lf = c.chip_extra * t2;  // the free chip's length (its tool side, along the arc)
+  const int nc2 = std::max(2, static_cast<int>(std::ceil(c.n * Lf / t1 * 0.5)));
+  const Vector2d r(std::sin(c.alpha), std::cos(c.alpha)), nr(std::cos(c.alpha), -std::sin(c.alpha));
+  const Vector2d S(-t1 / std::tan(c.phi), t1);
+  const Vector2d r2 = std::cos(c.eta2) * r - std::sin(c.eta2) * nr, n2 = std::cos(c.eta2) * nr + std::sin(c.eta2) * r;
+  const Vector2d C = l * r, D1 = S + l * (r - std::tan(c.eta1) * nr);
+  FreeChip f;
+  f.grid = graded_grid(nc2, 1.1, 0.0);
+  if (c.curl == 0.0) {
+    f.tool = {C, C + Lf * r2};
+    f.back = {D1, D1 + Lf * r2};
+    f.r_end = r2;
+    f.n_end = n2;
+    return f;
+  }
+  if (!(std::abs(c.curl) <= 150.0 * M_PI / 180.0)) throw InputError("chip_curl", "must be in [-150, 150] deg");
+  const double kappa = c.curl / Lf;
+  if (kappa > 0.0 && !((C - D1).dot(n2) < 0.9 / kappa))
+    throw InputError("chip_curl", "the centre of the curl must lie beyond the chip back: chip_curl < 0.9 x free-chip length / chip thickness");
+  const Vector2d P = C - n2 / kappa;
+  auto turn = [&](const Vector2d& x, double th) {
+    const Vector2d d = x - P;
+    return Vector2d(P.x() + std::cos(th) * d.x() - std::sin(th) * d.y(), P.y() + std::sin(th) * d.x() + std::cos(th) * d.y());
+  };
+  for (double g : f.grid) {
+    f.tool.push_back(turn(C, c.curl * g));
+    f.back.push_back(turn(D1, c.curl * g));
+  }
+  f.r_end = std::cos(c.curl) * r2 + std::sin(c.curl) * Vector2d(-r2.y(), r2.x());
+  f.n_end = std::cos(c.curl) * n2 + std::sin(c.curl) * Vector2d(-n2.y(), n2.x());
+  return f;
+}
+
+// Whether x lies on the polyline (within tol of one of its chords).
+bool on_polyline(const std::vector<Vector2d>& pl, const Vector2d& x, double tol) {
+  for (std::size_t k = 0; k + 1 < pl.size(); ++k) {
+    const Vector2d d = pl[k + 1] - pl[k];
+    const double u = (x - pl[k]).dot(d) / d.squaredNorm();
+    if (u >= -1e-9 && u <= 1.0 + 1e-9 && (pl[k] + u * d - x).norm() < tol) return true;
+  }
+  return false;
+}
+
 }  // namespace
+
+double max_chip_curl(const CuttingSetup& c) {
+  const double t1 = c.t1, t2 = chip_thickness(t1, c.phi, c.alpha), l = c.contact_length;
+  const Vector2d r(std::sin(c.alpha), std::cos(c.alpha)), nr(std::cos(c.alpha), -std::sin(c.alpha));
+  const Vector2d S(-t1 / std::tan(c.phi), t1), n2 = std::cos(c.eta2) * nr + std::sin(c.eta2) * r;
+  const double thickness = (l * r - (S + l * (r - std::tan(c.eta1) * nr))).dot(n2);  // C − D1 along n2
+  return thickness > 0.0 ? 0.9 * 0.9 * c.chip_extra * t2 / thickness : std::numeric_limits<double>::infinity();
+}
 
 LimitModel cutting_model(const CuttingSetup& c) {
   if (!(c.t1 > 0.0)) throw InputError("t1", "must be positive");
@@ -115,7 +178,7 @@ LimitModel cutting_model(const CuttingSetup& c) {
   const double lb = c.contact_length / Lc;
   const auto xc = piecewise_grid({0.0, lb, 1.0}, {uniform_grid(nc1), graded_grid(nc2, 1.1, 0.0)});
   const Mesh work = structured_quad({-Lw, 0.0}, O, S, {-Lw, t1}, xw, eta, Pattern::union_jack);
-  if (c.eta2 == 0.0 && c.eta1 == 0.0) {
+  if (c.eta2 == 0.0 && c.eta1 == 0.0 && c.curl == 0.0) {
     const Mesh chip = structured_quad(O, O + Lc * r, S + Lc * r, S, xc, eta, Pattern::union_jack);
     return cutting_model_on_mesh(with_block(merge(work, chip, 1e-9 * t1), c, Lw, xw), c);
   }
@@ -131,8 +194,16 @@ LimitModel cutting_model(const CuttingSetup& c) {
   const Vector2d r2 = std::cos(c.eta2) * r - std::sin(c.eta2) * nr;
   const Vector2d C = l * r, D1 = S + l * (r - std::tan(c.eta1) * nr);
   const Mesh chip1 = structured_quad(O, C, D1, S, uniform_grid(nc1), eta, Pattern::union_jack);
-  const Mesh chip2 = structured_quad(C, C + Lf * r2, D1 + Lf * r2, D1, graded_grid(nc2, 1.1, 0.0), eta, Pattern::union_jack);
-  return cutting_model_on_mesh(with_block(merge(merge(work, chip1, 1e-9 * t1), chip2, 1e-9 * t1), c, Lw, xw), c);
+  Mesh chip = merge(work, chip1, 1e-9 * t1);
+  if (c.curl == 0.0) {
+    chip = merge(chip, structured_quad(C, C + Lf * r2, D1 + Lf * r2, D1, graded_grid(nc2, 1.1, 0.0), eta, Pattern::union_jack), 1e-9 * t1);
+  } else {  // one trapezoid per chord of the curled free chip
+    const FreeChip f = free_chip(c);
+    for (std::size_t k = 0; k + 1 < f.tool.size(); ++k)
+      chip = merge(chip, structured_quad(f.tool[k], f.tool[k + 1], f.back[k + 1], f.back[k], {0.0, 1.0}, eta, Pattern::union_jack),
+                   1e-9 * t1);
+  }
+  return cutting_model_on_mesh(with_block(chip, c, Lw, xw), c);
 }
 
 LimitModel cutting_model_on_mesh(Mesh mesh, const CuttingSetup& c) {
@@ -341,18 +412,31 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     const Vector2d S(-c.t1 / std::tan(c.phi), c.t1);
     const double tol = 1e-6 * c.t1;
     // the chip back over the contact, S to D1 (direction r1, normal n1 out of the chip), and the
-    // free chip beyond l turned by η2 (direction r2, normal nr2 toward the tool side) from C–D1
+    // free chip beyond l (turned by η2, curled by Θ) from C–D1: its back and tool-side faces as
+    // polylines, its end the line C–D1 carried to the end of the free chip
     const double l = c.contact_length;
     const Vector2d r1 = std::cos(c.eta1) * r - std::sin(c.eta1) * nr, n1 = std::cos(c.eta1) * nr + std::sin(c.eta1) * r;
-    const Vector2d r2 = std::cos(c.eta2) * r - std::sin(c.eta2) * nr, nr2 = std::cos(c.eta2) * nr + std::sin(c.eta2) * r;
-    const Vector2d C = l * r, D1 = S + l * (r - std::tan(c.eta1) * nr);
+    const Vector2d D1 = S + l * (r - std::tan(c.eta1) * nr);
     const double back1 = (D1 - S).norm();
     res.back_contact_length = back1;
-    const bool turned = c.eta1 != 0.0 || c.eta2 != 0.0;
+    const bool turned = c.eta1 != 0.0 || c.eta2 != 0.0 || c.curl != 0.0;
     // the chip end: parallel to C–D1 (to OS when η1 = 0), its normal along the free chip
-    Vector2d n_end(-(D1 - C).y(), (D1 - C).x());
+    Vector2d r_end = r, n_tool = nr, n_end(-(D1 - l * r).y(), (D1 - l * r).x());
+    FreeChip fc;
+    if (turned) {
+      fc = free_chip(c);
+      r_end = fc.r_end;
+      n_tool = fc.n_end;
+      n_end = Vector2d(-(fc.back.back() - fc.tool.back()).y(), (fc.back.back() - fc.tool.back()).x());
+      double lt = 0.0, lb = 0.0;
+      for (std::size_t k = 0; k + 1 < fc.tool.size(); ++k) {
+        lt += (fc.tool[k + 1] - fc.tool[k]).norm();
+        lb += (fc.back[k + 1] - fc.back[k]).norm();
+      }
+      res.free_face_length = 0.5 * (lt + lb);
+    }
     n_end.normalize();
-    if (n_end.dot(r2) < 0.0) n_end = -n_end;
+    if (n_end.dot(r_end) < 0.0) n_end = -n_end;
     Vector2d v_end(0.0, 0.0);  // ∫ v ds over the chip end (Simpson)
     for (const auto& e : boundary_edges(mesh)) {
       const Vector2d n = boundary_normal(mesh, e);
@@ -368,9 +452,16 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
         res.flux_back += f;  // the chip back (over the contact; the whole straight back when not turned)
         if (a1 < back1) res.flux_back_contact += f;
       }
-      else if (turned && std::abs((xm - D1).dot(nr2)) < tol && (xm - D1).dot(r2) > 0.0) res.flux_back += f;
-      else if (turned && std::abs((xm - C).dot(nr2)) < tol && (xm - C).dot(r2) > 0.0) res.flux_rake_free += f;
-      else if (std::abs(n.dot(n_end) - 1.0) < 1e-9 && xm.dot(r) > l) {  // the chip end
+      else if (turned && on_polyline(fc.back, xm, tol)) {  // the free chip's back
+        res.flux_back += f;
+        res.flux_back_free += f;
+      }
+      else if (turned && on_polyline(fc.tool, xm, tol) && (xm - l * r).norm() > tol) {  // its tool side
+        res.flux_rake_free += f;
+        res.flux_tool_free += f;
+      }
+      else if ((turned && on_polyline({fc.tool.back(), fc.back.back()}, xm, tol)) ||
+               (!turned && std::abs(n.dot(n_end) - 1.0) < 1e-9 && xm.dot(r) > l)) {  // the chip end
         res.flux_end += f;
         auto v = [&](int nd) { return Vector2d(sol.velocity[2 * nd], sol.velocity[2 * nd + 1]); };
         v_end += L * (v(e.a) + 4.0 * v(e.m) + v(e.b)) / 6.0;
@@ -378,7 +469,25 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
       else if (std::abs(xm.dot(nr)) < tol && xm.dot(r) > 0.0) res.flux_rake_free += f;  // separation or free part
     }
     res.flux_under -= c.depth * c.t1;  // the block's own inflow
-    res.chip_exit_angle = std::atan2(-v_end.dot(nr2), v_end.dot(r2));  // relative to the (turned) chip
+    res.chip_exit_angle = std::atan2(-v_end.dot(n_tool), v_end.dot(r_end));  // relative to the chip's end direction
+    if (turned) {  // the free chip's start: ∫ v ds over the nodes on C–D1 (trapezoids), against η2's direction
+      const Vector2d C = fc.tool.front(), d = D1 - C;
+      std::vector<std::pair<double, int>> line;
+      for (int i = 0; i < mesh.num_nodes(); ++i) {
+        const Vector2d& x = mesh.nodes[static_cast<std::size_t>(i)];
+        const double u = (x - C).dot(d) / d.squaredNorm();
+        if (u >= -1e-9 && u <= 1.0 + 1e-9 && (C + u * d - x).norm() < tol) line.emplace_back(u, i);
+      }
+      std::sort(line.begin(), line.end());
+      Vector2d v_start(0.0, 0.0);
+      for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+        const int a = line[k].second, b = line[k + 1].second;
+        const Vector2d va(sol.velocity[2 * a], sol.velocity[2 * a + 1]), vb(sol.velocity[2 * b], sol.velocity[2 * b + 1]);
+        v_start += 0.5 * (line[k + 1].first - line[k].first) * d.norm() * (va + vb);
+      }
+      const Vector2d r2 = std::cos(c.eta2) * r - std::sin(c.eta2) * nr, n2 = std::cos(c.eta2) * nr + std::sin(c.eta2) * r;
+      res.chip_start_angle = std::atan2(-v_start.dot(n2), v_start.dot(r2));
+    }
     double rn = 0.0;
     for (Eigen::Index i = 0; i < sol.slider_rn.size(); ++i) rn += std::abs(sol.slider_rn[i]);
     res.streamline_force = rn / (c.k * c.t1);

@@ -296,7 +296,7 @@ struct CuttingModes {
   int search_mode = 0;  // contact_search: 0 fixed, 1 grow, 2 separation
   int loop_mode = 0;    // steady_state: 0 off, 1 turning_point, 2 tangent_exit
   int adapt_steps = 0;
-  bool fit_eta = false, fit_eta1 = false, anisotropic = false;
+  bool fit_eta = false, fit_eta1 = false, fit_curl = false, anisotropic = false;
   bool search() const { return search_mode > 0; }
   bool loop() const { return loop_mode == 1; }
   bool tangent() const { return loop_mode == 2; }
@@ -367,12 +367,16 @@ const DeclaredParams<CuttingRun>& cutting_declaration() {
              [](S& s, double v) { s.geometry.depth = v; })
         .add(param("exit_length", Dim::dimensionless, "machined surface meshed beyond the tool tip, in t1 (depth > 0)", 2.0, 0.5, 20.0),
              [](S& s, double v) { s.geometry.exit_length = v; })
-        .add(switch_param("fit_eta2", "fit eta2 so that the chip end moves along the turned chip (eta2 <- eta2 + 0.7 exit angle, at most 6 solves, |d eta2| < 0.25 deg); fixed phi and l only", false),
+        .add(switch_param("fit_eta2", "fit eta2 so that the chip end moves along the turned chip (Broyden steps from eta2 <- eta2 + 0.7 exit angle, at most 6 solves, 10 with fit_eta1, 14 with fit_curl; converged at 0.7 |residual| < 0.25 deg); fixed phi and l only", false),
              [](S& s, double v) { s.modes.fit_eta = v != 0.0; })
         .add(param("eta1", Dim::angle, "stream angle of the chip back over the contact (Fig. 5): the back from S turned by eta1 away from the tool (> 0: the chip thickens along the contact); needs the chip back free (streamline none or top)", 0.0, -0.7, 0.7),
              [](S& s, double v) { s.geometry.eta1 = v; })
         .add(switch_param("fit_eta1", "with fit_eta2: fit eta1 too, so that no material crosses the chip back over the contact (eta1 <- eta1 + 0.7 mean crossing angle, at most 10 solves)", false),
              [](S& s, double v) { s.modes.fit_eta1 = v != 0.0; })
+        .add(param("chip_curl", Dim::angle, "our extension of Fig. 5: total turn of the free chip beyond the contact (> 0 away from the tool), the chip swept by the line C-D1 turning rigidly about one centre so that both its faces are arcs; 0: the straight chip", 0.0, -2.618, 2.618),
+             [](S& s, double v) { s.geometry.curl = v; })
+        .add(switch_param("fit_curl", "with fit_eta2: fit chip_curl too, so that the free chip starts along eta2 and ends along eta2 + curl (Broyden steps on the start and exit angles, at most 14 solves, curl within +-120 deg)", false),
+             [](S& s, double v) { s.modes.fit_curl = v != 0.0; })
         .add(p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%) from the structured mesh; at a fixed geometry, or at every phi of the steady_state = 2 loop (with contact_search: l(phi) from the uniform mesh, then the refined permanent contact over l)", 0, 0, 10),
              [](S& s, double v) { s.modes.adapt_steps = static_cast<int>(v); })
         .add(option_param("refine", "kind of the adaptive refinement",
@@ -404,6 +408,8 @@ CuttingRun cutting_run_from(const Values& given_in) {
   const CuttingModes& m = r.modes;
   if (m.fit_eta1 && !m.fit_eta)
     throw InputError("fit_eta1", "the eta1 fit runs with the eta2 fit (fit_eta2 = true)");
+  if (m.fit_curl && !m.fit_eta)
+    throw InputError("fit_curl", "the curl fit runs with the eta2 fit (fit_eta2 = true)");
   if ((c.eta1 != 0.0 || m.fit_eta1) && c.streamline >= 2)
     throw InputError("eta1", "a chip back at eta1 is free: streamline \"none\" or \"top\"");
   if (m.fit_eta && (m.search() || m.loop() || m.tangent()))
@@ -467,7 +473,9 @@ struct SteadyState {
   CuttingResult r;
   std::vector<double> phi, phi_star, fc, l, elements, eta;  // per iteration (eta2 fit: exit angles in phi)
   std::vector<double> eta1, back_angle;                      // eta1 fit: per iteration
+  std::vector<double> curl, start_angle;                     // curl fit: per iteration
   bool tangent_converged = true, tangent_at_merchant = false;
+  bool fit_converged = true;  // the stream-angle fit (fit_eta2), when it runs
   std::vector<std::string> notes;
 };
 
@@ -520,13 +528,13 @@ private:
     const CuttingSetup in = cs;
     CuttingResult computed;
     const int before = solves_.count;
-    const std::vector<double>& rec = evaluate({cs.phi, cs.contact_length, cs.eta2, cs.eta1}, [&] {
+    const std::vector<double>& rec = evaluate({cs.phi, cs.contact_length, cs.eta2, cs.eta1, cs.curl}, [&] {
       computed = configure(cs);
       const double ps = run_.modes.loop() ? measured_shear_angle(cs, computed) : nan_value();
       return std::vector<double>{computed.fc_bar, computed.chip_exit_angle,
                                  static_cast<double>(computed.model.mesh.num_elements()), cs.contact_length, ps,
                                  static_cast<double>(solves_.count - before), computed.flux_back_contact,
-                                 computed.back_contact_length, computed.v_chip};
+                                 computed.back_contact_length, computed.v_chip, computed.chip_start_angle};
     });
     const int e = static_cast<int>(evaluation_index());
     inputs_[e] = in;
@@ -544,6 +552,7 @@ private:
     summary.flux_back_contact = rec[6];
     summary.back_contact_length = rec[7];
     summary.v_chip = rec[8];
+    summary.chip_start_angle = rec[9];
     summary.recorded_evaluation = e;
     return summary;
   }
@@ -584,16 +593,22 @@ private:
       st.fc = std::move(res.fc_bar);
       st.r = std::move(res.final);
     } else if (m.fit_eta) {
-      const int max_iter = m.fit_eta1 ? 10 : 6;
-      auto fit = fit_stream_angles(c, m.fit_eta1, [&](CuttingSetup cs) { return evaluated(cs); }, max_iter);
+      const int max_iter = m.fit_curl ? 14 : m.fit_eta1 ? 10 : 6;
+      auto fit = fit_stream_angles(c, m.fit_eta1, [&](CuttingSetup cs) { return evaluated(cs); }, max_iter,
+                                   0.25 * kPi / 180.0, m.fit_curl);
       st.eta = fit.eta2;
       st.phi = fit.exit_angle;  // the fit history
       st.eta1 = fit.eta1;
       st.back_angle = fit.back_angle;
       c.eta2 = fit.eta2.back();
       c.eta1 = fit.eta1.back();
+      c.curl = fit.curl.back();
+      st.curl = fit.curl;
+      st.start_angle = fit.start_angle;
+      st.fit_converged = fit.converged;
       if (!fit.converged)
-        st.notes.push_back(std::string(m.fit_eta1 ? "eta1/eta2" : "eta2") + " fit not converged after " + std::to_string(max_iter) +
+        st.notes.push_back(std::string(m.fit_eta1 ? "eta1/eta2" : "eta2") + (m.fit_curl ? "/curl" : "") + " fit not converged after " +
+                           std::to_string(fit.eta2.size()) +
                            " solves (last exit angle " + std::to_string(fit.exit_angle.back()) + " rad, back crossing angle " +
                            std::to_string(fit.back_angle.back()) + " rad)");
       st.r = std::move(fit.final);
@@ -691,7 +706,10 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
   put("eta2", r.chip_exit_angle, "rad");
   put("eta2_geometry", c.eta2, "rad");
   put("eta1_geometry", c.eta1, "rad");
+  put("curl_geometry", c.curl, "rad");
   put("flux_back_contact", r.flux_back_contact, "1");
+  put("flux_free", std::abs(r.flux_top) + std::abs(r.flux_back) + std::abs(r.flux_rake_free), "1");
+  if (m.fit_eta) put("stream_fit_converged", st.fit_converged ? 1.0 : 0.0, "1");
   for (const auto& nt : st.notes) out.notes.push_back(nt);
   if (!r.refinement.empty()) {  // the refinement sequence of the final configuration
     Table ref;
@@ -719,6 +737,8 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
     hist.add("exit_angle", "rad", st.phi);
     hist.add("eta1", "rad", st.eta1);
     hist.add("back_angle", "rad", st.back_angle);
+    hist.add("curl", "rad", st.curl);
+    hist.add("start_angle", "rad", st.start_angle);
     out.tables.push_back(std::move(hist));
   }
   put("solves", solves, "1");
@@ -824,7 +844,9 @@ SolverSpec cutting_spec() {
                "iterations of the stream-angle fit (eta2, with fit_eta1 also eta1)",
                {{"eta2", "rad", "stream angle of the chip geometry beyond the contact"}, {"exit_angle", "rad", "chip-end exit angle"},
                 {"eta1", "rad", "stream angle of the chip back over the contact"},
-                {"back_angle", "rad", "mean angle at which material leaves through the chip back over the contact (flux / (length x chip speed))"}}}};
+                {"back_angle", "rad", "mean angle at which material leaves through the chip back over the contact (flux / (length x chip speed))"},
+                {"curl", "rad", "total turn of the free chip beyond the contact (chip_curl)"},
+                {"start_angle", "rad", "direction of the mean velocity over the line C-D1 where the free chip starts, relative to eta2 (> 0 away from the tool)"}}}};
   s.scalars = {{"cutting_force", Dim::force, "F_c"},
                {"feed_force", Dim::force, "F_f (force on the tool along +y, normal to the cut surface)"},
                {"fc_bar", Dim::dimensionless, "F_c/(k t1 w)"},
@@ -850,7 +872,10 @@ SolverSpec cutting_spec() {
                {"eta2", Dim::angle, "direction of the chip end velocity relative to the chip beyond the contact (mean velocity over the chip end; > 0 away from the tool)"},
                {"eta2_geometry", Dim::angle, "stream angle eta2 of the chip geometry beyond the contact (given or fitted)"},
                {"eta1_geometry", Dim::angle, "stream angle eta1 of the chip back over the contact (given or fitted)"},
+               {"curl_geometry", Dim::angle, "total turn of the free chip beyond the contact (chip_curl, given or fitted)"},
                {"flux_back_contact", Dim::dimensionless, "part of flux_back through the chip back over the contact (S to the point above the contact end) / (v t1)"},
+               {"flux_free", Dim::dimensionless, "|flux_top| + |flux_back| + |flux_rake_free|: volume crossing the free surfaces (uncut top, chip back, rake-face line) / (v t1); 0 when they are streamlines"},
+               {"stream_fit_converged", Dim::dimensionless, "fit_eta2 only: 1 when the stream angles changed by less than 0.25 deg in the last update, 0 when the fit stopped at its solve limit"},
                {"max_sigma_eq_over_k", Dim::dimensionless, "max sqrt(J2)/k over all stress points"},
                {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},
                {"solves", Dim::dimensionless, "limit-analysis problems solved (Coulomb steps excluded)"},

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "cutbench/analytic/cutting.hpp"
 #include "cutbench/common/errors.hpp"
 #include "cutbench/limit/limit_analysis.hpp"
@@ -63,6 +65,15 @@ struct CuttingSetup {
   // starts from the line C–D1. 0: the back parallel to the rake face (Eq. 2). Needs streamline ≤ 1
   // (the chip back free).
   double eta1 = 0.0;
+  // Curl of the free chip beyond l (our extension of Fig. 5, where the free chip is straight; the
+  // paper's sec. 3.2 has the unrestricted chip flowing "with a low curvature"): the total turn Θ
+  // [rad] of the free chip over its length, > 0 away from the tool. The free chip is then the
+  // region swept by the line C–D1 turning rigidly by Θ about the centre P = C − n2/κ (κ = Θ / its
+  // tool-side length, n2 the normal toward the tool side at C), so that both its faces are arcs
+  // about P (streamlines of a rigid rotation), meshed as one trapezoid per chord; its direction at
+  // C is η2's. 0: the straight (turned) parallelogram. |Θ| ≤ 150° and, for Θ > 0, the centre
+  // beyond the chip back.
+  double curl = 0.0;
   // Workpiece below the cutting line, depth in t1. 0: only the uncut layer is meshed, the cutting
   // line y = 0 is a smooth rigid plane and the tool tip is fixed (stagnation imposed at the tip).
   // > 0: the block −depth·t1 ≤ y ≤ 0 enters with the layer at v = (1, 0), its bottom moves
@@ -117,6 +128,12 @@ struct CuttingResult {
   // the part of flux_back through the chip back over the contact (S to D1; the rest leaves beyond l)
   double flux_back_contact = 0.0;
   double back_contact_length = 0.0;  // |D1 − S|
+  // the free chip beyond l (eta1, eta2 or curl set): flux out of its back and out of its tool-side
+  // face (> 0: leaving the chip), and the mean length of the two faces
+  double flux_back_free = 0.0, flux_tool_free = 0.0, free_face_length = 0.0;
+  // the free chip's start angle: the mean velocity ∫v ds over the line C–D1 where it leaves the
+  // contact part, relative to its direction there (η2's), > 0 away from the tool (0 when not turned)
+  double chip_start_angle = 0.0;
   // through the rake-face line (outward from the chip, i.e. > 0 into the tool): the free part
   // beyond l (> 0: the chip would cross the rake face, < 0: it lifts off / curls away)
   // and, with the unilateral contact, the separating nodes (v·n = −z < 0: the chip lifts off)
@@ -174,43 +191,108 @@ SteadyStateResult steady_state(CuttingSetup setup, const SteadyStateOptions& opt
 
 // Mean normal contact stress over the last `fraction` of the contact length (σ_n/k, < 0 in
 // compression), from the lumped profile of a solved case.
+// The largest curl the free chip of c admits (the centre of a curl away from the tool beyond the
+// chip back, CuttingSetup::curl), in rad.
+double max_chip_curl(const CuttingSetup& c);
+
 // Fit of the stream angles of Fig. 5 ("both angles are determined so that the velocity vectors are
-// tangent to the chip geometry contour"), at fixed φ and l, by under-relaxed updates until both
-// change by less than tol:
-//  - η2 ← η2 + 0.7 chip_exit_angle (the chip end then moves along the turned free chip);
-//  - with fit_eta1, η1 ← η1 + 0.7 a1, a1 = flux_back_contact / (|D1 − S| v_chip) the mean angle
-//    at which material crosses the chip back over the contact (> 0: it leaves, so the back turns
-//    away from the tool and the chip thickens along the contact);
-// both kept inside ±40° (η1 also above the bound of cutting_model). Returns the last solve.
+// tangent to the chip geometry contour"), at fixed φ and l. The unknowns are ψ, the free chip's
+// direction at its end (η2 + the curl), η1 and, with fit_curl, η2 itself (the curl is then ψ − η2;
+// without it the free chip is straight and η2 = ψ). The residuals:
+//  - for ψ, the chip end's exit angle (chip_exit_angle: zero when the chip end moves along the free
+//    chip's end direction);
+//  - for η1 (fit_eta1), a1 = flux_back_contact / (|D1 − S| v_chip), the mean angle at which material
+//    crosses the chip back over the contact (> 0: it leaves, so the back turns away from the tool and
+//    the chip thickens along the contact);
+//  - for η2 (fit_curl, our extension, CuttingSetup::curl), the free chip's start angle
+//    (chip_start_angle: the mean velocity over C–D1 relative to η2's direction), so that the chip
+//    enters and leaves its free part along its faces.
+// The update is Broyden's ("good") quasi-Newton step, started from the Jacobian −I/0.7, so that the
+// first step is the under-relaxed η ← η + 0.7 residual (which alone converges only linearly, with
+// ratios of 0.5-0.6 per solve on the restricted tool); a step that is not finite or points against
+// the relaxed one in every fitted unknown falls back to the relaxed step and restarts the Jacobian.
+// Steps are limited to 10° per unknown, η1 and η2 to ±40° (η1 also above the bound of
+// cutting_model), the curl to ±120° and max_chip_curl. Converged when 0.7 |residual| < tol for
+// every fitted unknown; the fit stops unconverged when the bounds leave every unknown where it was
+// (no admissible step). Returns the last solve.
 struct StreamFitResult {
-  std::vector<double> eta1, eta2, back_angle, exit_angle;  // per solve
+  std::vector<double> eta1, eta2, curl, back_angle, exit_angle, start_angle;  // per solve
   bool converged = false;
   CuttingResult final;
 };
 template <class SolveFn>
 StreamFitResult fit_stream_angles(CuttingSetup c, bool fit_eta1, SolveFn&& solve, int max_iter = 6,
-                                  double tol = 0.25 * 3.14159265358979323846 / 180.0) {
-  constexpr double kMax = 40.0 * 3.14159265358979323846 / 180.0;
+                                  double tol = 0.25 * 3.14159265358979323846 / 180.0, bool fit_curl = false) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0, kMax = 40.0 * kDeg, kRelax = 0.7;
+  const Eigen::Vector3d active(1.0, fit_eta1 ? 1.0 : 0.0, fit_curl ? 1.0 : 0.0);
+  const Eigen::Matrix3d J0 = -Eigen::Matrix3d::Identity() / kRelax;
+  Eigen::Matrix3d J = J0;  // d(residual)/d(ψ, η1, η2)
+  Eigen::Vector3d x_prev = Eigen::Vector3d::Zero(), f_prev = Eigen::Vector3d::Zero();
+  bool have_prev = false;
+  if (!fit_curl) c.curl = 0.0;
   StreamFitResult out;
   for (int it = 0; it < max_iter; ++it) {
     CuttingResult r = solve(c);
     const double a1 = r.back_contact_length > 0.0 ? r.flux_back_contact / (r.back_contact_length * r.v_chip) : 0.0;
     out.eta1.push_back(c.eta1);
     out.eta2.push_back(c.eta2);
+    out.curl.push_back(c.curl);
     out.back_angle.push_back(a1);
     out.exit_angle.push_back(r.chip_exit_angle);
-    const double d2 = 0.7 * r.chip_exit_angle, d1 = fit_eta1 ? 0.7 * a1 : 0.0;
+    out.start_angle.push_back(r.chip_start_angle);
+    const Eigen::Vector3d x(c.eta2 + c.curl, c.eta1, c.eta2);
+    const Eigen::Vector3d f = Eigen::Vector3d(r.chip_exit_angle, a1, r.chip_start_angle).cwiseProduct(active);
     out.final = std::move(r);
-    if (std::abs(d2) < tol && std::abs(d1) < tol) {
+    if ((kRelax * f.cwiseAbs()).maxCoeff() < tol) {
       out.converged = true;
       break;
     }
-    // under-relaxed (the exit angle overshoots for μ ≥ 1) and kept inside the bounds
-    c.eta2 = std::clamp(c.eta2 + d2, -kMax, kMax);
+    if (have_prev) {
+      const Eigen::Vector3d dx = x - x_prev, df = f - f_prev;
+      if (dx.squaredNorm() > 0.0) J += (df - J * dx) * dx.transpose() / dx.squaredNorm();
+    }
+    const Eigen::Vector3d relaxed = kRelax * f;
+    Eigen::Vector3d step = relaxed;
+    {  // the Newton step on the fitted unknowns only
+      std::vector<int> idx;
+      for (int i = 0; i < 3; ++i)
+        if (active(i) != 0.0) idx.push_back(i);
+      const auto m = static_cast<Eigen::Index>(idx.size());
+      Eigen::MatrixXd Js(m, m);
+      Eigen::VectorXd fs(m);
+      for (Eigen::Index i = 0; i < m; ++i) {
+        fs(i) = f(idx[static_cast<std::size_t>(i)]);
+        for (Eigen::Index j = 0; j < m; ++j) Js(i, j) = J(idx[static_cast<std::size_t>(i)], idx[static_cast<std::size_t>(j)]);
+      }
+      const Eigen::VectorXd ss = Js.fullPivLu().solve(-fs);
+      bool against = true;
+      for (Eigen::Index i = 0; i < m; ++i) {
+        const int k = idx[static_cast<std::size_t>(i)];
+        step(k) = ss(i);
+        if (step(k) * relaxed(k) >= 0.0) against = false;
+      }
+      if (!step.allFinite() || against) {
+        step = relaxed;
+        J = J0;
+      }
+    }
+    x_prev = x;
+    f_prev = f;
+    have_prev = true;
+    step = step.cwiseMax(-10.0 * kDeg).cwiseMin(10.0 * kDeg);
+    const double psi = x(0) + step(0);
     if (fit_eta1) {
       const double lo = std::atan(-0.8 * chip_thickness(c.t1, c.phi, c.alpha) / c.contact_length);
-      c.eta1 = std::clamp(c.eta1 + d1, std::max(-kMax, lo), kMax);
+      c.eta1 = std::clamp(c.eta1 + step(1), std::max(-kMax, lo), kMax);
     }
+    if (fit_curl) {
+      c.eta2 = std::clamp(c.eta2 + step(2), -kMax, kMax);
+      c.curl = std::clamp(psi - c.eta2, -120.0 * kDeg, 120.0 * kDeg);
+      c.curl = std::min(c.curl, max_chip_curl(c));
+    } else {
+      c.eta2 = std::clamp(psi, -kMax, kMax);
+    }
+    if (c.eta2 + c.curl == x(0) && c.eta1 == x(1) && c.eta2 == x(2)) break;  // held by the bounds: no admissible step
   }
   return out;
 }

@@ -213,8 +213,8 @@ double max_chip_curl(const CuttingSetup& c);
 // the relaxed one in every fitted unknown falls back to the relaxed step and restarts the Jacobian.
 // Steps are limited to 10° per unknown, η1 and η2 to ±40° (η1 also above the bound of
 // cutting_model), the curl to ±120° and max_chip_curl. Converged when 0.7 |residual| < tol for
-// every fitted unknown; the fit stops unconverged when the bounds leave every unknown where it was
-// (no admissible step). Returns the last solve.
+// every fitted unknown; the fit stops unconverged when the bounds let no unknown move by a quarter
+// of tol (no admissible step). Returns the last solve.
 struct StreamFitResult {
   std::vector<double> eta1, eta2, curl, back_angle, exit_angle, start_angle;  // per solve
   bool converged = false;
@@ -292,7 +292,9 @@ StreamFitResult fit_stream_angles(CuttingSetup c, bool fit_eta1, SolveFn&& solve
     } else {
       c.eta2 = std::clamp(psi, -kMax, kMax);
     }
-    if (c.eta2 + c.curl == x(0) && c.eta1 == x(1) && c.eta2 == x(2)) break;  // held by the bounds: no admissible step
+    // held by the bounds: the admissible step moves no unknown by a quarter of the tolerance
+    const Eigen::Vector3d moved(c.eta2 + c.curl - x(0), c.eta1 - x(1), c.eta2 - x(2));
+    if (moved.cwiseAbs().maxCoeff() < 0.25 * tol) break;
   }
   return out;
 }

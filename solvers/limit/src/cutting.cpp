@@ -89,7 +89,6 @@ Mesh with_block(Mesh m, const CuttingSetup& c, double Lw, const std::vector<doub
   return merge(m, workpiece_block(c, Lw, xw), 1e-9 * c.t1);
 }
 
-
 // The free chip beyond l of a turned chip (η1, η2 or the curl set): its tool-side face from
 // C = l r and its back from D1, as polylines (the two ends of the straight parallelogram; one
 // chord per cell of the curled chip), the grid of the cells along it, and its direction at the end.

@@ -875,7 +875,7 @@ SolverSpec cutting_spec() {
                {"curl_geometry", Dim::angle, "total turn of the free chip beyond the contact (chip_curl, given or fitted)"},
                {"flux_back_contact", Dim::dimensionless, "part of flux_back through the chip back over the contact (S to the point above the contact end) / (v t1)"},
                {"flux_free", Dim::dimensionless, "|flux_top| + |flux_back| + |flux_rake_free|: volume crossing the free surfaces (uncut top, chip back, rake-face line) / (v t1); 0 when they are streamlines"},
-               {"stream_fit_converged", Dim::dimensionless, "fit_eta2 only: 1 when the stream angles changed by less than 0.25 deg in the last update, 0 when the fit stopped at its solve limit"},
+               {"stream_fit_converged", Dim::dimensionless, "fit_eta2 only: 1 when every fitted residual was below 0.36 deg (0.7 |residual| < 0.25 deg), 0 when the fit stopped at its solve limit or stalled at its bounds"},
                {"max_sigma_eq_over_k", Dim::dimensionless, "max sqrt(J2)/k over all stress points"},
                {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},
                {"solves", Dim::dimensionless, "limit-analysis problems solved (Coulomb steps excluded)"},

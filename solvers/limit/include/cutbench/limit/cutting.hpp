@@ -198,7 +198,8 @@ double max_chip_curl(const CuttingSetup& c);
 // Fit of the stream angles of Fig. 5 ("both angles are determined so that the velocity vectors are
 // tangent to the chip geometry contour"), at fixed φ and l. The unknowns are ψ, the free chip's
 // direction at its end (η2 + the curl), η1 and, with fit_curl, η2 itself (the curl is then ψ − η2;
-// without it the free chip is straight and η2 = ψ). The residuals:
+// without it the curl stays as given, 0 for the paper's straight free chip, and η2 = ψ − curl).
+// The residuals:
 //  - for ψ, the chip end's exit angle (chip_exit_angle: zero when the chip end moves along the free
 //    chip's end direction);
 //  - for η1 (fit_eta1), a1 = flux_back_contact / (|D1 − S| v_chip), the mean angle at which material
@@ -229,7 +230,6 @@ StreamFitResult fit_stream_angles(CuttingSetup c, bool fit_eta1, SolveFn&& solve
   Eigen::Matrix3d J = J0;  // d(residual)/d(ψ, η1, η2)
   Eigen::Vector3d x_prev = Eigen::Vector3d::Zero(), f_prev = Eigen::Vector3d::Zero();
   bool have_prev = false;
-  if (!fit_curl) c.curl = 0.0;
   StreamFitResult out;
   for (int it = 0; it < max_iter; ++it) {
     CuttingResult r = solve(c);
@@ -289,8 +289,8 @@ StreamFitResult fit_stream_angles(CuttingSetup c, bool fit_eta1, SolveFn&& solve
       c.eta2 = std::clamp(c.eta2 + step(2), -kMax, kMax);
       c.curl = std::clamp(psi - c.eta2, -120.0 * kDeg, 120.0 * kDeg);
       c.curl = std::min(c.curl, max_chip_curl(c));
-    } else {
-      c.eta2 = std::clamp(psi, -kMax, kMax);
+    } else {  // a given curl stays
+      c.eta2 = std::clamp(psi - c.curl, -kMax, kMax);
     }
     // held by the bounds: the admissible step moves no unknown by a quarter of the tolerance
     const Eigen::Vector3d moved(c.eta2 + c.curl - x(0), c.eta1 - x(1), c.eta2 - x(2));

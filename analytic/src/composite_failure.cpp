@@ -104,14 +104,23 @@ PlaneSearch larc_matrix_compression(double s22, double t12, double S_T, double S
   thread_local FractureGrid table;
   const FractureGrid& grid = table.at(alpha0);
   const int n = FractureGrid::n;
+  // The grid values first (independent of each other, so the loop vectorises), then their largest
+  // in four independent chains, then its first index: the same value and index as a running
+  // maximum (which chained every point to the comparison before it), bit for bit. A NaN is never
+  // taken unless it is values[0], which then stays, as in the running maximum.
+  double values[FractureGrid::n + 1];
+  for (int i = 0; i <= n; ++i) values[i] = g(grid.c[i], grid.s[i]);
+  double lane[4] = {values[0], values[0], values[0], values[0]};
+  int i = 1;
+  for (; i + 3 <= n; i += 4) {
+    for (int k = 0; k < 4; ++k) lane[k] = values[i + k] > lane[k] ? values[i + k] : lane[k];
+  }
+  for (; i <= n; ++i) lane[0] = values[i] > lane[0] ? values[i] : lane[0];
+  double best_v = lane[0];
+  for (int k = 1; k < 4; ++k) best_v = lane[k] > best_v ? lane[k] : best_v;
   int best = 0;
-  double best_v = g(grid.c[0], grid.s[0]);
-  for (int i = 1; i <= n; ++i) {
-    const double v = g(grid.c[i], grid.s[i]);
-    if (v > best_v) {
-      best_v = v;
-      best = i;
-    }
+  if (best_v > values[0]) {
+    while (!(values[best] == best_v)) ++best;
   }
   PlaneSearch out{best_v, alpha0 * best / n};
   // A stationary point of g in the grid intervals next to the best grid point: dg/da > 0 at lo and

@@ -29,9 +29,10 @@ Eigen::Matrix3d stress_rotation(double theta) {
 Eigen::Matrix3d Orthotropic::Qbar(double theta) const {
   // sigma_12 = T sigma_xy and, by work conjugacy, gamma_12 = T^{-T} gamma_xy (engineering shear),
   // so sigma_xy = T^{-1} Q T^{-T} gamma_xy.
-  const Eigen::Matrix3d Ti = stress_rotation(theta).inverse();
-  return Ti * Q() * Ti.transpose();
+  return Qbar_rotated(stress_rotation(theta).inverse());
 }
+
+Eigen::Matrix3d Orthotropic::Qbar_rotated(const Eigen::Matrix3d& Ti) const { return Ti * Q() * Ti.transpose(); }
 
 Orthotropic Orthotropic::isotropic(double E, double nu, double rho) {
   Orthotropic m;

@@ -16,6 +16,9 @@ struct Orthotropic {
   double wave_speed() const;                                  // sqrt(C11/rho), Eq 55
   Eigen::Matrix3d Q() const;                                  // material-frame stiffness
   Eigen::Matrix3d Qbar(double theta) const;                   // x-y frame stiffness
+  // The same with the inverse stress rotation T(theta)^-1 given (kept by a caller that rotates
+  // many stiffnesses at one angle): bit for bit Qbar(theta).
+  Eigen::Matrix3d Qbar_rotated(const Eigen::Matrix3d& Ti) const;
   static Orthotropic isotropic(double E, double nu, double rho);
 };
 

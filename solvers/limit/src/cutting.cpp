@@ -98,14 +98,33 @@ struct FreeChip {
   Vector2d r_end, n_end;  // direction of the chip at its end, and the normal toward the tool side
 };
 
-FreeChip free_chip(const CuttingSetup& c) {
+// Where the free chip starts: the rake direction r and its normal nr, the free chip's direction r2
+// and normal n2 (η2), its tool-side start C = l r and back start D1 (η1), and its length Lf.
+struct ChipStart {
+  double t2, Lf;
+  Vector2d r, nr, r2, n2, C, D1;
+};
+
+ChipStart chip_start(const CuttingSetup& c) {
   const double t1 = c.t1, t2 = chip_thickness(t1, c.phi, c.alpha), l = c.contact_length;
-  const double Lf = c.chip_extra * t2;  // the free chip's length (its tool side, along the arc)
-  const int nc2 = std::max(2, static_cast<int>(std::ceil(c.n * Lf / t1 * 0.5)));
-  const Vector2d r(std::sin(c.alpha), std::cos(c.alpha)), nr(std::cos(c.alpha), -std::sin(c.alpha));
+  ChipStart s;
+  s.t2 = t2;
+  s.Lf = c.chip_extra * t2;  // the free chip's length (its tool side, along the arc)
+  s.r = Vector2d(std::sin(c.alpha), std::cos(c.alpha));
+  s.nr = Vector2d(std::cos(c.alpha), -std::sin(c.alpha));
   const Vector2d S(-t1 / std::tan(c.phi), t1);
-  const Vector2d r2 = std::cos(c.eta2) * r - std::sin(c.eta2) * nr, n2 = std::cos(c.eta2) * nr + std::sin(c.eta2) * r;
-  const Vector2d C = l * r, D1 = S + l * (r - std::tan(c.eta1) * nr);
+  s.r2 = std::cos(c.eta2) * s.r - std::sin(c.eta2) * s.nr;
+  s.n2 = std::cos(c.eta2) * s.nr + std::sin(c.eta2) * s.r;
+  s.C = l * s.r;
+  s.D1 = S + l * (s.r - std::tan(c.eta1) * s.nr);
+  return s;
+}
+
+FreeChip free_chip(const CuttingSetup& c) {
+  const ChipStart cs = chip_start(c);
+  const double Lf = cs.Lf;
+  const int nc2 = std::max(2, static_cast<int>(std::ceil(c.n * Lf / c.t1 * 0.5)));
+  const Vector2d &r2 = cs.r2, &n2 = cs.n2, &C = cs.C, &D1 = cs.D1;
   FreeChip f;
   f.grid = graded_grid(nc2, 1.1, 0.0);
   if (c.curl == 0.0) {
@@ -146,11 +165,9 @@ bool on_polyline(const std::vector<Vector2d>& pl, const Vector2d& x, double tol)
 }  // namespace
 
 double max_chip_curl(const CuttingSetup& c) {
-  const double t1 = c.t1, t2 = chip_thickness(t1, c.phi, c.alpha), l = c.contact_length;
-  const Vector2d r(std::sin(c.alpha), std::cos(c.alpha)), nr(std::cos(c.alpha), -std::sin(c.alpha));
-  const Vector2d S(-t1 / std::tan(c.phi), t1), n2 = std::cos(c.eta2) * nr + std::sin(c.eta2) * r;
-  const double thickness = (l * r - (S + l * (r - std::tan(c.eta1) * nr))).dot(n2);  // C − D1 along n2
-  return thickness > 0.0 ? 0.9 * 0.9 * c.chip_extra * t2 / thickness : std::numeric_limits<double>::infinity();
+  const ChipStart cs = chip_start(c);
+  const double thickness = (cs.C - cs.D1).dot(cs.n2);
+  return thickness > 0.0 ? 0.9 * 0.9 * c.chip_extra * cs.t2 / thickness : std::numeric_limits<double>::infinity();
 }
 
 LimitModel cutting_model(const CuttingSetup& c) {

@@ -20,7 +20,7 @@ Mat2 voigt_to_tensor(const Eigen::Vector3d& s) {
 
 ExplicitEFG::ExplicitEFG(const Discretisation& d, const Orthotropic& mat, double theta,
                          const ExplicitOptions& opt)
-    : mat_(mat), Qbar_(mat.Qbar(theta)), T_(stress_rotation(theta)), Ti_(stress_rotation(theta).inverse()), theta_(theta), opt_(opt), larc_bound_(opt.failure.lamina), support_(d.support), spacing_(d.spacing),
+    : mat_(mat), Qbar_(mat.Qbar(theta)), T_(stress_rotation(theta)), Ti_(stress_rotation(theta).inverse()), opt_(opt), larc_bound_(opt.failure.lamina), support_(d.support), spacing_(d.spacing),
       X0_(d.nodes), xr_(d.nodes), x_(d.nodes) {
   if (opt_.update_interval < 1) throw InputError("update_interval", "must be >= 1");
   const std::size_t n = X0_.size();

@@ -292,7 +292,6 @@ private:
   Eigen::Matrix3d Qbar_;
   Eigen::Matrix3d T_;  // stress rotation x-y -> 1-2 (Eq 52) for theta
   Eigen::Matrix3d Ti_;  // its inverse, for the degraded stiffnesses (a sincos and an inverse each otherwise)
-  double theta_ = 0.0;
   RigidTool tool_;
   bool has_tool_ = false;
   Vec2 tool_force_ = Vec2::Zero();

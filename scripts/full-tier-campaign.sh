@@ -40,13 +40,15 @@ case "$method" in
     # initial value. Measured with the time-step factor 0.9: the smallest node-study mesh (2,574
     # nodes, LaRC02 30 deg) takes 42,067 steps, about 75 s on an idle thread (completion at 105 um);
     # with the factor 0.5 the node study's 10,894-node run took 403,528 steps, so a 12,015-node run
-    # is of the order of half an hour to an hour on one thread. 23 distinct runs: Figs 6-10 use
+    # is of the order of half an hour to an hour on one thread. 25 distinct runs: Figs 6-10 use
     # Table 4's runs at 30 and 75 deg (which keep the damage snapshots), the node study's 0.0096 mm
-    # run is Table 4's LaRC02 30 deg. Order: the node study, then Hashin and the time-scaling
-    # points, LaRC02, and maximum stress last.
+    # run is Table 4's LaRC02 30 deg; Table 4's erosion comparison adds two LaRC02 runs (30 and 75 deg)
+    # with erosion. Order: the node study, then Hashin and the time-scaling points, LaRC02, the
+    # erosion pair, and maximum stress last.
     compute --case kahwash2018/table2 --case kahwash2018/table6
     compute --case kahwash2018/table4 --series efg_hashin --series time_scaling
     compute --case kahwash2018/table4 --series efg_larc02
+    compute --case kahwash2018/table4 --series efg_larc02_erosion
     compute --case kahwash2018/table4 --series efg_max_stress
     compute --case kahwash2018/fig06 --case kahwash2018/fig08 --case kahwash2018/fig09 --case kahwash2018/fig10
     ;;

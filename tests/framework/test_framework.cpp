@@ -889,6 +889,99 @@ scatter_source = "test"
   BOOST_TEST(run_with("toy_sc5", "2.0", "{ full = 0.6 }").status == "PASS");  // no quick-tier scatter
 }
 
+// Run histories: a window given as fractions of the x range, the drift between its two halves, and
+// one number across every run of a series (run = "each").
+BOOST_AUTO_TEST_CASE(drift_over_a_window_fraction_across_runs) {
+  if (!SolverRegistry::instance().find("toy_history_solver")) {
+    SolverSpec sv;
+    sv.name = "toy_history_solver";
+    sv.description = "f(t) = 1 + a t on t = 0, 1, ..., 10";
+    sv.source = "test";
+    sv.params = {param("a", Dim::dimensionless, "slope", 0.0, -1.0, 1.0)};
+    sv.scalars = {{"f_end", Dim::dimensionless, "f(10)"}};
+    sv.tables = {{"hist", "history", {{"t", "1", "time"}, {"f", "1", "value"}}}};
+    sv.run = [](const Values& v, const ProgressFn&) {
+      RunOutput r;
+      Table h;
+      h.name = "hist";
+      std::vector<double> ts, fs_;
+      for (int i = 0; i <= 10; ++i) {
+        ts.push_back(i);
+        fs_.push_back(1.0 + v.at("a") * i);
+      }
+      h.add("t", "1", ts);
+      h.add("f", "1", fs_);
+      r.tables.push_back(h);
+      r.set_scalar("f_end", fs_.back(), "1");
+      return r;
+    };
+    SolverRegistry::instance().add(sv);
+  }
+  const fs::path dir = fs::temp_directory_path() / "cutbench_test_cases" / "nairn2015";
+  fs::create_directories(dir);
+  const fs::path f = dir / "toy_drift.toml";
+  auto check = [](const std::string& key, const std::string& value, const std::string& ref) {
+    return "[[checks]]\nkey = \"" + key + "\"\nkind = \"verification\"\nmetric = \"within\"\nvalue = " + value +
+           "\nreference = " + ref + "\nunits = \"1\"\nsource = \"exact\"\n";
+  };
+  const std::string sel = R"({ series = "s", run = "each", table = "hist", output = "f", x = "t", window_fraction = [0.5, 1.0], reduce = "drift")";
+  std::ofstream(f) << R"(id = "nairn2015/toy_drift"
+paper = "nairn2015"
+item = "Test"
+title = "t"
+requirement = "r"
+solver = "mpm"
+models = ["toy_history_solver"]
+tiers = ["quick"]
+status = "implemented"
+[[series]]
+name = "s"
+model = "toy_history_solver"
+sweep = { param = "a", values = [0.0, 0.1, -0.1] }
+)" << check("one_run", R"({ series = "s", run = 1, table = "hist", output = "f", x = "t", window_fraction = [0.5, 1.0], reduce = "drift" })", "[0.17, 0.18]")
+     << check("max_abs", sel + R"(, across_runs = "max_abs" })", "[1.1, 1.3]")
+     << check("max", sel + R"(, across_runs = "max" })", "[0.17, 0.18]")
+     << check("min", sel + R"(, across_runs = "min" })", "[-1.3, -1.1]")
+     << check("window_mean", R"({ series = "s", run = 1, table = "hist", output = "f", x = "t", window_fraction = [0.0, 0.5] })", "[1.24, 1.26]");
+  const CaseResult r = run_case(load_case(f, "quick"), "quick", nullptr);
+  std::map<std::string, const CheckRecord*> c;
+  for (const auto& ch : r.checks) c[ch.key] = &ch;
+  // t = 5..10, halves split at 7.5: (1 + 9a) - (1 + 6a) over 1 + 7.5a
+  BOOST_TEST(c.at("one_run")->value == 0.3 / 1.75, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(c.at("max_abs")->value == 1.2, boost::test_tools::tolerance(1e-12));  // a = -0.1: -0.3 / 0.25
+  BOOST_TEST(c.at("max")->value == 0.3 / 1.75, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(c.at("min")->value == -1.2, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(c.at("window_mean")->value == 1.25, boost::test_tools::tolerance(1e-12));  // t = 0..5
+  for (const auto& [k, ch] : c) {
+    BOOST_TEST(ch->status == "PASS", k);
+    BOOST_TEST(ch->audit.empty(), k + ": " + ch->audit);  // each can fail
+  }
+  // bad selectors name the field
+  for (const std::string& bad : {std::string(R"({ series = "s", run = 0, table = "hist", output = "f", across_runs = "max" })"),
+                                 std::string(R"({ series = "s", run = "all", table = "hist", output = "f", x = "t", window = [0, 1] })")}) {
+    const fs::path g = dir / "toy_drift_bad.toml";
+    std::ofstream(g) << R"(id = "nairn2015/toy_drift_bad"
+paper = "nairn2015"
+item = "Test"
+title = "t"
+requirement = "r"
+solver = "mpm"
+models = ["toy_history_solver"]
+tiers = ["quick"]
+status = "implemented"
+[[series]]
+name = "s"
+model = "toy_history_solver"
+params = { a = 0.1 }
+)" << check("bad", bad, "[0, 1]");
+    BOOST_CHECK_EXCEPTION(load_case(g, "quick"), InputError, [](const InputError& e) {
+      return e.field().find(".run") != std::string::npos || e.field().find("across_runs") != std::string::npos;
+    });
+    fs::remove(g);
+  }
+  fs::remove(f);
+}
+
 // The audit: a comparison of a series with itself cannot fail; a comparison with a number can.
 BOOST_AUTO_TEST_CASE(audit_finds_checks_that_cannot_fail) {
   add_toy();

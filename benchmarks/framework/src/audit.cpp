@@ -14,7 +14,7 @@
 namespace cutbench::framework {
 namespace {
 
-// One column a value selector reads: series, run (-1: the series table), table and column.
+// One column a value selector reads: series, run (-1: the series table; -2: every run), table and column.
 struct Leaf {
   std::string series;
   long run = -1;
@@ -23,6 +23,8 @@ struct Leaf {
     return std::tie(series, run, table, column) < std::tie(o.series, o.run, o.table, o.column);
   }
 };
+
+constexpr long kEveryRun = -2;  // a leaf of run = "each": the same table of every run
 
 void collect_leaves(const json& sel, std::set<Leaf>& out) {
   if (!sel.is_object()) return;
@@ -38,8 +40,8 @@ void collect_leaves(const json& sel, std::set<Leaf>& out) {
   Leaf l;
   l.series = sel["series"].get<std::string>();
   l.column = sel["output"].get<std::string>();
-  if (sel.contains("run") && sel["run"].is_number_integer()) {
-    l.run = sel["run"].get<long>();
+  if (sel.contains("run") && (sel["run"].is_number_integer() || sel["run"] == "each")) {
+    l.run = sel["run"] == "each" ? kEveryRun : sel["run"].get<long>();
     l.table = sel.value("table", std::string());
   }
   out.insert(l);
@@ -143,7 +145,7 @@ std::string audit_static(const CaseSpec& spec, const CheckSpec& cs) {
     return "same data: the computed and the reference curve are the same series output";
   }
   for (const auto& l : leaves) {
-    if (l.run >= 0) continue;
+    if (l.run != -1) continue;  // a run's history, not an input of the series
     for (const auto& s : spec.series) {
       const auto inputs = varied_params(s);
       if (s.name == l.series && std::find(inputs.begin(), inputs.end(), l.column) != inputs.end()) {
@@ -159,8 +161,22 @@ std::string audit_check(const CaseSpec& spec, const CheckSpec& cs, const CheckRe
   if (std::string s = audit_static(spec, cs); !s.empty()) return s;
   // nothing to perturb: no verdict, or a quantity the run does not define
   if ((base.status != "PASS" && base.status != "FAIL") || !base.has_value) return {};
-  std::set<Leaf> leaves;
-  collect_leaves(cs.value, leaves);
+  std::set<Leaf> collected, leaves;
+  collect_leaves(cs.value, collected);
+  for (const auto& l : collected) {  // run = "each": perturb each run's table in turn
+    if (l.run != kEveryRun) {
+      leaves.insert(l);
+      continue;
+    }
+    for (const auto& s : series) {
+      if (s.name != l.series) continue;
+      for (std::size_t k = 0; k < s.runs.size(); ++k) {
+        Leaf one = l;
+        one.run = static_cast<long>(k);
+        leaves.insert(one);
+      }
+    }
+  }
   if (leaves.empty()) return {};
   CaseSpec one = spec;
   one.checks = {cs};

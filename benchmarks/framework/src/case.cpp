@@ -419,9 +419,13 @@ void validate_selector(const json& sel, const std::string& field, const std::vec
   if (out.empty()) throw InputError(field + "." + output_key, "missing");
   std::vector<std::string> cols;
   std::string owner;
+  if (sel.contains("across_runs") && !(sel.contains("run") && sel["run"] == "each")) {
+    throw InputError(field + ".across_runs", "needs run = \"each\"");
+  }
   if (sel.contains("run")) {
-    if (!sel["run"].is_number_integer() || sel["run"].get<long long>() < 0) {
-      throw InputError(field + ".run", "the index of a run of the series (0, 1, ...)");
+    const bool each = sel["run"] == "each";
+    if (!each && (!sel["run"].is_number_integer() || sel["run"].get<long long>() < 0)) {
+      throw InputError(field + ".run", "the index of a run of the series (0, 1, ...) or \"each\" (every run)");
     }
     if (!s->solver) throw InputError(field + ".run", "series '" + name + "' evaluates a model: it has no runs");
     const SolverSpec& sv = *SolverRegistry::instance().find(s->model);

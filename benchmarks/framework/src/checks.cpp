@@ -151,6 +151,29 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
   }
   if (!sel.contains("series")) throw InputError(field, "selector needs 'series' (or ratio/difference)");
   const auto& s = find_series(series, sel["series"].get<std::string>());
+  if (sel.contains("run") && sel["run"].is_string()) {
+    // run = "each": the selector on every run of the series, then one number across the runs
+    if (sel["run"].get<std::string>() != "each") throw InputError(field + ".run", "a run index or \"each\"");
+    if (s.runs.empty()) throw NotRun{"series '" + s.name + "' has no runs"};
+    const std::string across = sel.value("across_runs", std::string("max_abs"));
+    std::vector<double> vs;
+    for (std::size_t k = 0; k < s.runs.size(); ++k) {
+      json one = sel;
+      one["run"] = k;
+      one.erase("across_runs");
+      vs.push_back(select(series, one, field + " (run " + std::to_string(k) + ")"));
+    }
+    if (across == "max") return *std::max_element(vs.begin(), vs.end());
+    if (across == "min") return *std::min_element(vs.begin(), vs.end());
+    if (across == "mean") return std::accumulate(vs.begin(), vs.end(), 0.0) / static_cast<double>(vs.size());
+    if (across == "max_abs") {
+      double m = 0.0;
+      for (double v : vs) m = std::max(m, std::abs(v));
+      return m;
+    }
+    throw InputError(field + ".across_runs", "unknown reduction '" + across + "' (max, min, max_abs, mean)");
+  }
+  if (sel.contains("across_runs")) throw InputError(field + ".across_runs", "needs run = \"each\"");
   const Table& t = find_table(s, sel);
   if (!sel.contains("output")) throw InputError(field + ".output", "missing");
   const std::string out = sel["output"].get<std::string>();
@@ -188,11 +211,31 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
   const bool has_x = sel.contains("x");
   const std::vector<double>* xcol = has_x ? &column(t, sel["x"].get<std::string>(), field + ".x") : nullptr;
   double lo = -INFINITY, hi = INFINITY;
+  if (sel.contains("window") && sel.contains("window_fraction")) {
+    throw InputError(field + ".window_fraction", "give window or window_fraction, not both");
+  }
   if (sel.contains("window")) {
     if (!has_x) throw InputError(field + ".window", "needs x");
     const Dim xd = column_dim(t, sel["x"].get<std::string>(), field + ".x");
     lo = qty(sel["window"].at(0), xd, field + ".window[0]");
     hi = qty(sel["window"].at(1), xd, field + ".window[1]");
+  }
+  if (sel.contains("window_fraction")) {  // a window given as fractions of the x range of the table
+    if (!has_x) throw InputError(field + ".window_fraction", "needs x");
+    const json& wf = sel["window_fraction"];
+    if (!wf.is_array() || wf.size() != 2 || !wf[0].is_number() || !wf[1].is_number() ||
+        !(wf[0].get<double>() >= 0.0 && wf[0].get<double>() < wf[1].get<double>() && wf[1].get<double>() <= 1.0)) {
+      throw InputError(field + ".window_fraction", "[a, b] with 0 <= a < b <= 1");
+    }
+    double xmin = INFINITY, xmax = -INFINITY;
+    for (double xv : *xcol) {
+      if (!std::isfinite(xv)) continue;
+      xmin = std::min(xmin, xv);
+      xmax = std::max(xmax, xv);
+    }
+    if (!(xmax >= xmin)) throw NotRun{"no finite '" + sel["x"].get<std::string>() + "' to place the window in"};
+    lo = xmin + wf[0].get<double>() * (xmax - xmin);
+    hi = xmin + wf[1].get<double>() * (xmax - xmin);
   }
   for (std::size_t i = 0; i < y.size(); ++i) {
     const double xv = has_x ? (*xcol)[i] : static_cast<double>(i);
@@ -245,7 +288,28 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
                                              "' (slope, slope_sign, argmax, argmin, largest_drop_location, "
                                              "largest_drop_fraction, monotonic_increasing, monotonic_decreasing)");
   }
-  const std::string reduce = sel.value("reduce", std::string(sel.contains("window") ? "mean" : ""));
+  const bool windowed = sel.contains("window") || sel.contains("window_fraction");
+  const std::string reduce = sel.value("reduce", std::string(windowed ? "mean" : ""));
+  if (reduce == "drift") {
+    // (mean over the second half of the window - mean over its first half) / |mean over the window|
+    if (!windowed) throw InputError(field + ".reduce", "drift needs x and a window (or window_fraction)");
+    const double mid = 0.5 * (lo + hi);
+    double s1 = 0.0, s2 = 0.0;
+    std::size_t n1 = 0, n2 = 0;
+    for (std::size_t i = 0; i < ys.size(); ++i) {
+      if (xs[i] < mid) {
+        s1 += ys[i];
+        ++n1;
+      } else {
+        s2 += ys[i];
+        ++n2;
+      }
+    }
+    if (n1 == 0 || n2 == 0) throw NotRun{"a half of the window holds no point"};
+    const double all = (s1 + s2) / static_cast<double>(n1 + n2);
+    if (all == 0.0) throw NotRun{"the mean over the window is zero"};
+    return (s2 / static_cast<double>(n2) - s1 / static_cast<double>(n1)) / std::abs(all);
+  }
   if (reduce.empty()) {
     if (ys.size() != 1) throw InputError(field, "selects " + std::to_string(ys.size()) + " points: give row, at, reduce or feature");
     return ys[0];
@@ -268,7 +332,7 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
     const double sd = std::sqrt(ss / std::max(1.0, n - 1));
     return reduce == "std" ? sd : sd / std::abs(mean);
   }
-  throw InputError(field + ".reduce", "unknown reduction '" + reduce + "' (mean, max, min, max_abs, first, last, std, cv)");
+  throw InputError(field + ".reduce", "unknown reduction '" + reduce + "' (mean, max, min, max_abs, first, last, std, cv, drift)");
 }
 
 // Reference value in SI (or throws NotRun for an explicitly unavailable reference).

@@ -958,7 +958,11 @@ sweep = { param = "a", values = [0.0, 0.1, -0.1] }
   }
   // bad selectors name the field
   for (const std::string& bad : {std::string(R"({ series = "s", run = 0, table = "hist", output = "f", across_runs = "max" })"),
-                                 std::string(R"({ series = "s", run = "all", table = "hist", output = "f", x = "t", window = [0, 1] })")}) {
+                                 std::string(R"({ series = "s", run = "all", table = "hist", output = "f", x = "t", window = [0, 1] })"),
+                                 std::string(R"({ series = "s", run = "each", table = "hist", output = "f", x = "t", window = [0, 10], across_runs = "median" })"),
+                                 std::string(R"({ series = "s", run = 0, table = "hist", output = "f", window_fraction = [0.5, 1.0] })"),
+                                 std::string(R"({ series = "s", run = 0, table = "hist", output = "f", x = "t", window_fraction = [0.5, 1.5] })"),
+                                 std::string(R"({ series = "s", run = 0, table = "hist", output = "f", x = "t", reduce = "drift" })")}) {
     const fs::path g = dir / "toy_drift_bad.toml";
     std::ofstream(g) << R"(id = "nairn2015/toy_drift_bad"
 paper = "nairn2015"
@@ -975,8 +979,41 @@ model = "toy_history_solver"
 params = { a = 0.1 }
 )" << check("bad", bad, "[0, 1]");
     BOOST_CHECK_EXCEPTION(load_case(g, "quick"), InputError, [](const InputError& e) {
-      return e.field().find(".run") != std::string::npos || e.field().find("across_runs") != std::string::npos;
+      return e.field().find(".run") != std::string::npos || e.field().find("across_runs") != std::string::npos ||
+             e.field().find("window_fraction") != std::string::npos || e.field().find(".reduce") != std::string::npos;
     });
+    fs::remove(g);
+  }
+  // every run only where a check reduces it to one number: not in a plot line
+  {
+    const fs::path g = dir / "toy_drift_plot.toml";
+    std::ofstream(g) << R"(id = "nairn2015/toy_drift_plot"
+paper = "nairn2015"
+item = "Test"
+title = "t"
+requirement = "r"
+solver = "mpm"
+models = ["toy_history_solver"]
+tiers = ["quick"]
+status = "implemented"
+[[series]]
+name = "s"
+model = "toy_history_solver"
+params = { a = 0.1 }
+[[plots]]
+name = "p"
+title = "t"
+xlabel = "t"
+ylabel = "f"
+[[plots.lines]]
+series = "s"
+run = "each"
+table = "hist"
+x = "t"
+y = "f"
+)";
+    BOOST_CHECK_EXCEPTION(load_case(g, "quick"), InputError,
+                          [](const InputError& e) { return e.field().find(".run") != std::string::npos; });
     fs::remove(g);
   }
   fs::remove(f);

@@ -390,16 +390,18 @@ std::vector<std::string> series_columns(const SeriesSpec& s) {
 // A selector of computed data (a check's value, a link, a plot line) names only what the series'
 // model or solver declares: checked at load, before anything runs. `names` are the series of the
 // case in every tier; a series of another tier, or a pending one, is not resolved here.
+// `scalar`: the selector of a check that reduces it to one number; only there may it read every run
+// (run = "each") or reduce a window to its drift.
 void validate_selector(const json& sel, const std::string& field, const std::vector<SeriesSpec>& series,
-                       const std::set<std::string>& names, const char* output_key = "output") {
+                       const std::set<std::string>& names, const char* output_key = "output", bool scalar = false) {
   if (sel.is_number()) return;  // a constant inside ratio/difference/product
   if (!sel.is_object()) throw InputError(field, "a selector table { series = ..., output = ... }");
   for (const char* op : {"ratio", "difference", "product"}) {
     if (!sel.contains(op)) continue;
     const json& ab = sel[op];
     if (!ab.is_array() || ab.size() != 2) throw InputError(field + "." + op, "expected [a, b]");
-    validate_selector(ab[0], field + "." + op + "[0]", series, names);
-    validate_selector(ab[1], field + "." + op + "[1]", series, names);
+    validate_selector(ab[0], field + "." + op + "[0]", series, names, output_key, scalar);
+    validate_selector(ab[1], field + "." + op + "[1]", series, names, output_key, scalar);
     return;
   }
   if (!sel.contains("series") || !sel["series"].is_string()) throw InputError(field + ".series", "the name of a series");
@@ -419,11 +421,35 @@ void validate_selector(const json& sel, const std::string& field, const std::vec
   if (out.empty()) throw InputError(field + "." + output_key, "missing");
   std::vector<std::string> cols;
   std::string owner;
-  if (sel.contains("across_runs") && !(sel.contains("run") && sel["run"] == "each")) {
-    throw InputError(field + ".across_runs", "needs run = \"each\"");
+  // the window and reduction options, checked before anything runs
+  const bool each_run = sel.contains("run") && sel["run"] == "each";
+  if (each_run && !scalar) {
+    throw InputError(field + ".run", "\"each\" only in a check's value or reference reduced to one number");
+  }
+  if (sel.contains("across_runs")) {
+    if (!each_run) throw InputError(field + ".across_runs", "needs run = \"each\"");
+    static const std::set<std::string> across = {"max", "min", "max_abs", "mean"};
+    if (!sel["across_runs"].is_string() || !across.count(sel["across_runs"].get<std::string>())) {
+      throw InputError(field + ".across_runs", "one of max, min, max_abs, mean");
+    }
+  }
+  if (sel.contains("window_fraction")) {
+    const json& wf = sel["window_fraction"];
+    if (sel.contains("window")) throw InputError(field + ".window_fraction", "give window or window_fraction, not both");
+    if (!sel.contains("x")) throw InputError(field + ".window_fraction", "needs x");
+    if (!wf.is_array() || wf.size() != 2 || !wf[0].is_number() || !wf[1].is_number() ||
+        !(wf[0].get<double>() >= 0.0 && wf[0].get<double>() < wf[1].get<double>() && wf[1].get<double>() <= 1.0)) {
+      throw InputError(field + ".window_fraction", "[a, b] with 0 <= a < b <= 1");
+    }
+  }
+  if (sel.contains("reduce") && sel["reduce"] == "drift") {
+    if (!scalar) throw InputError(field + ".reduce", "drift only in a check's value or reference");
+    if (!sel.contains("window") && !sel.contains("window_fraction")) {
+      throw InputError(field + ".reduce", "drift needs x and a window (or window_fraction)");
+    }
   }
   if (sel.contains("run")) {
-    const bool each = sel["run"] == "each";
+    const bool each = each_run;
     if (!each && (!sel["run"].is_number_integer() || sel["run"].get<long long>() < 0)) {
       throw InputError(field + ".run", "the index of a run of the series (0, 1, ...) or \"each\" (every run)");
     }
@@ -868,10 +894,11 @@ CaseSpec load_case(const fs::path& file, const std::string& tier) {
       if (cs.reference.is_object() && cs.reference.contains("file")) {
         load_reference(root / "reference_data" / c.paper / cs.reference["file"].get<std::string>(), cw + "reference.file");
       }
-      validate_selector(cs.value, cw + "value", c.series, series_names);
+      const bool scalar = cs.metric != "curve_max_norm";
+      validate_selector(cs.value, cw + "value", c.series, series_names, "output", scalar);
       if (cs.reference.is_object() && (cs.reference.contains("series") || cs.reference.contains("ratio") ||
                                        cs.reference.contains("difference") || cs.reference.contains("product"))) {
-        validate_selector(cs.reference, cw + "reference", c.series, series_names);
+        validate_selector(cs.reference, cw + "reference", c.series, series_names, "output", scalar);
       }
       c.checks.push_back(std::move(cs));
     }

@@ -293,7 +293,9 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
   if (reduce == "drift") {
     // (mean over the second half of the window - mean over its first half) / |mean over the window|
     if (!windowed) throw InputError(field + ".reduce", "drift needs x and a window (or window_fraction)");
-    const double mid = 0.5 * (lo + hi);
+    // the halves split at the middle of the window's part that holds data
+    const double mid = 0.5 * (std::max(lo, *std::min_element(xs.begin(), xs.end())) +
+                              std::min(hi, *std::max_element(xs.begin(), xs.end())));
     double s1 = 0.0, s2 = 0.0;
     std::size_t n1 = 0, n2 = 0;
     for (std::size_t i = 0; i < ys.size(); ++i) {
@@ -305,7 +307,7 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
         ++n2;
       }
     }
-    if (n1 == 0 || n2 == 0) throw NotRun{"a half of the window holds no point"};
+    if (n1 < 2 || n2 < 2) throw NotRun{"a half of the window holds fewer than two points"};
     const double all = (s1 + s2) / static_cast<double>(n1 + n2);
     if (all == 0.0) throw NotRun{"the mean over the window is zero"};
     return (s2 / static_cast<double>(n2) - s1 / static_cast<double>(n1)) / std::abs(all);

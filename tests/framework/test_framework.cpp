@@ -67,6 +67,17 @@ fs::path write_case(const std::string& name, const std::string& body, const std:
                       << "tiers = " << tiers << "\n" << body;
   return file;
 }
+
+// A quick-tier case file of one solver model (the preamble of the solver-run tests).
+fs::path write_solver_case(const std::string& name, const std::string& model, const std::string& body) {
+  const fs::path dir = fs::temp_directory_path() / "cutbench_test_cases" / "nairn2015";
+  fs::create_directories(dir);
+  const fs::path file = dir / (name + ".toml");
+  std::ofstream(file) << "id = \"nairn2015/" << name << "\"\npaper = \"nairn2015\"\nitem = \"Test\"\n"
+                      << "title = \"t\"\nrequirement = \"r\"\nsolver = \"mpm\"\nmodels = [\"" << model << "\"]\n"
+                      << "tiers = [\"quick\"]\nstatus = \"implemented\"\n" << body;
+  return file;
+}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(every_inventory_item_has_a_case_file) {
@@ -917,32 +928,20 @@ BOOST_AUTO_TEST_CASE(drift_over_a_window_fraction_across_runs) {
     };
     SolverRegistry::instance().add(sv);
   }
-  const fs::path dir = fs::temp_directory_path() / "cutbench_test_cases" / "nairn2015";
-  fs::create_directories(dir);
-  const fs::path f = dir / "toy_drift.toml";
   auto check = [](const std::string& key, const std::string& value, const std::string& ref) {
     return "[[checks]]\nkey = \"" + key + "\"\nkind = \"verification\"\nmetric = \"within\"\nvalue = " + value +
            "\nreference = " + ref + "\nunits = \"1\"\nsource = \"exact\"\n";
   };
   const std::string sel = R"({ series = "s", run = "each", table = "hist", output = "f", x = "t", window_fraction = [0.5, 1.0], reduce = "drift")";
-  std::ofstream(f) << R"(id = "nairn2015/toy_drift"
-paper = "nairn2015"
-item = "Test"
-title = "t"
-requirement = "r"
-solver = "mpm"
-models = ["toy_history_solver"]
-tiers = ["quick"]
-status = "implemented"
-[[series]]
+  const fs::path f = write_solver_case("toy_drift", "toy_history_solver", R"([[series]]
 name = "s"
 model = "toy_history_solver"
 sweep = { param = "a", values = [0.0, 0.1, -0.1] }
-)" << check("one_run", R"({ series = "s", run = 1, table = "hist", output = "f", x = "t", window_fraction = [0.5, 1.0], reduce = "drift" })", "[0.17, 0.18]")
-     << check("max_abs", sel + R"(, across_runs = "max_abs" })", "[1.1, 1.3]")
-     << check("max", sel + R"(, across_runs = "max" })", "[0.17, 0.18]")
-     << check("min", sel + R"(, across_runs = "min" })", "[-1.3, -1.1]")
-     << check("window_mean", R"({ series = "s", run = 1, table = "hist", output = "f", x = "t", window_fraction = [0.0, 0.5] })", "[1.24, 1.26]");
+)" + check("one_run", R"({ series = "s", run = 1, table = "hist", output = "f", x = "t", window_fraction = [0.5, 1.0], reduce = "drift" })", "[0.17, 0.18]") +
+                                                check("max_abs", sel + R"(, across_runs = "max_abs" })", "[1.1, 1.3]") +
+                                                check("max", sel + R"(, across_runs = "max" })", "[0.17, 0.18]") +
+                                                check("min", sel + R"(, across_runs = "min" })", "[-1.3, -1.1]") +
+                                                check("window_mean", R"({ series = "s", run = 1, table = "hist", output = "f", x = "t", window_fraction = [0.0, 0.5] })", "[1.24, 1.26]"));
   const CaseResult r = run_case(load_case(f, "quick"), "quick", nullptr);
   std::map<std::string, const CheckRecord*> c;
   for (const auto& ch : r.checks) c[ch.key] = &ch;
@@ -963,21 +962,11 @@ sweep = { param = "a", values = [0.0, 0.1, -0.1] }
                                  std::string(R"({ series = "s", run = 0, table = "hist", output = "f", window_fraction = [0.5, 1.0] })"),
                                  std::string(R"({ series = "s", run = 0, table = "hist", output = "f", x = "t", window_fraction = [0.5, 1.5] })"),
                                  std::string(R"({ series = "s", run = 0, table = "hist", output = "f", x = "t", reduce = "drift" })")}) {
-    const fs::path g = dir / "toy_drift_bad.toml";
-    std::ofstream(g) << R"(id = "nairn2015/toy_drift_bad"
-paper = "nairn2015"
-item = "Test"
-title = "t"
-requirement = "r"
-solver = "mpm"
-models = ["toy_history_solver"]
-tiers = ["quick"]
-status = "implemented"
-[[series]]
+    const fs::path g = write_solver_case("toy_drift_bad", "toy_history_solver", R"([[series]]
 name = "s"
 model = "toy_history_solver"
 params = { a = 0.1 }
-)" << check("bad", bad, "[0, 1]");
+)" + check("bad", bad, "[0, 1]"));
     BOOST_CHECK_EXCEPTION(load_case(g, "quick"), InputError, [](const InputError& e) {
       return e.field().find(".run") != std::string::npos || e.field().find("across_runs") != std::string::npos ||
              e.field().find("window_fraction") != std::string::npos || e.field().find(".reduce") != std::string::npos;
@@ -986,17 +975,7 @@ params = { a = 0.1 }
   }
   // every run only where a check reduces it to one number: not in a plot line
   {
-    const fs::path g = dir / "toy_drift_plot.toml";
-    std::ofstream(g) << R"(id = "nairn2015/toy_drift_plot"
-paper = "nairn2015"
-item = "Test"
-title = "t"
-requirement = "r"
-solver = "mpm"
-models = ["toy_history_solver"]
-tiers = ["quick"]
-status = "implemented"
-[[series]]
+    const fs::path g = write_solver_case("toy_drift_plot", "toy_history_solver", R"([[series]]
 name = "s"
 model = "toy_history_solver"
 params = { a = 0.1 }
@@ -1011,7 +990,7 @@ run = "each"
 table = "hist"
 x = "t"
 y = "f"
-)";
+)");
     BOOST_CHECK_EXCEPTION(load_case(g, "quick"), InputError,
                           [](const InputError& e) { return e.field().find(".run") != std::string::npos; });
     fs::remove(g);

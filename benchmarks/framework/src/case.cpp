@@ -449,8 +449,7 @@ void validate_selector(const json& sel, const std::string& field, const std::vec
     }
   }
   if (sel.contains("run")) {
-    const bool each = each_run;
-    if (!each && (!sel["run"].is_number_integer() || sel["run"].get<long long>() < 0)) {
+    if (!each_run && (!sel["run"].is_number_integer() || sel["run"].get<long long>() < 0)) {
       throw InputError(field + ".run", "the index of a run of the series (0, 1, ...) or \"each\" (every run)");
     }
     if (!s->solver) throw InputError(field + ".run", "series '" + name + "' evaluates a model: it has no runs");

@@ -274,9 +274,9 @@ const DeclaredParams<CuttingSetup>& cutting_declaration() {
         .bind(integer_param("drop_window", "steps of the running mean of dt", 200, 1, 1e6), &S::drop_window)
         .bind(p("min_travel", Dim::length, "no chip-completion detection before this travel", 0.0, 0, inf), &S::min_travel)
         .bind(option_param("completion_guard", "when a drop of the time step counts as chip completion",
-                              {{"always", "at any drop"}, {"damaged_path", "once damaged Gauss points connect the edge and the free surface"},
+                              {{"always", "at the first drop (the paper's Algorithm 3.6)"}, {"damaged_path", "once damaged Gauss points connect the edge and the free surface"},
                                {"eroded_path", "once eroded Gauss points ahead of the edge connect the edge and the free surface"}},
-                              "damaged_path"), &S::completion_guard)
+                              "always"), &S::completion_guard)
         .bind(p("cfl", Dim::dimensionless,
                 "time step / (min nodal distance / c_max): the reduction factor of Belytschko, Liu & Moran (2000), 0.8-0.98",
                 S{}.cfl, 0.01, 1.0), &S::cfl)

@@ -64,14 +64,16 @@ struct CuttingSetup {
   double drop = 0.3;
   int drop_window = 200;
   double min_travel = 0.0;       // no detection before this travel (start-up transient)
-  // Guard (checked every record window): a drop counts as chip completion only once
-  //  - damage_path: damaged Gauss points (fibre or matrix) connect the tool edge to the free surface
-  //    (the paper's "damage propagating from the cutting point to the free surface", section 5.4);
-  //  - separation: Gauss points that carry no stress (eroded: fibre and matrix failed) connect the
-  //    edge to the free surface through material ahead of the edge, i.e. the chip is cut off from
-  //    the workpiece ("loss of stiffness in the chip as it becomes completely damaged").
-  // none: every drop counts (local crushing at the edge of fine meshes fires after a few um).
-  CompletionGuard completion_guard = CompletionGuard::damage_path;
+  // Guard (checked every record window): which drop counts as chip completion.
+  //  - none: the first drop, as the paper's Algorithm 3.6 terminates ("when the sudden drop is
+  //    detected, the code terminates", section 5.4, a criterion devised "without resorting to
+  //    burdensome geometrical calculations"); the default;
+  //  - damage_path: only once damaged Gauss points (fibre or matrix) connect the tool edge to the
+  //    free surface (the paper's verbal "damage propagating from the cutting point to the free
+  //    surface", section 5.4), an option for comparison;
+  //  - separation: only once Gauss points that carry no stress (eroded: fibre and matrix failed)
+  //    connect the edge to the free surface through material ahead of the edge (with erosion on).
+  CompletionGuard completion_guard = CompletionGuard::none;
   Kinematics kinematics = Kinematics::updated_lagrangian;
   int update_interval = 1;
   int record_every = 20;         // steps per force record (forces averaged over the window)

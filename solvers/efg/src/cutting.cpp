@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <optional>
 #include <cmath>
+#include <cstdio>
 
 #include "cutbench/common/checkpoint.hpp"
 #include "cutbench/common/errors.hpp"
@@ -278,7 +279,19 @@ public:
     }
     if (s_.visibility) extend_cut_line();
     if (++nacc_ == s_.record_every || r_.t_complete >= 0.0) record_window(dt, trav);
-    if (r_.t_complete >= 0.0 || dt < 1e-3 * r_.dt_initial) stopped_ = true;  // completed; collapsed nodes: broken
+    if (r_.t_complete >= 0.0) {
+      stopped_ = true;
+    } else if (dt < 1e-3 * r_.dt_initial) {
+      // Nodes have collapsed onto each other (a degraded Gauss point squeezed flat): the run cannot
+      // go on at any useful cost and its state is no longer the model's, so it is a fault (as an
+      // explicit code stops below its minimum step), not a run that ended.
+      char msg[256];
+      std::snprintf(msg, sizeof msg,
+                    "EFG cutting: the Eq. 56 time step fell below 1e-3 of its initial value after %zu steps "
+                    "and %.4g um of tool travel, before a chip completion was detected (collapsed nodes)",
+                    steps(), 1e6 * trav);
+      throw NumericalError(msg);
+    }
   }
 
   // The solver state and every accumulator of the loop.

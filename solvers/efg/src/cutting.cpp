@@ -269,6 +269,7 @@ public:
       r_.t_complete = solver_.time();
       r_.travel_complete = trav;
       r_.dt_drop_ratio = detector_->ratio();
+      r_.dt_mean_at_drop_ratio = dt / detector_->ratio() / r_.dt_initial;
     }
     const Vec2 f = solver_.tool_force();
     acc_ += f * dt;

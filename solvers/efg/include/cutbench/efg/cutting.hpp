@@ -100,6 +100,7 @@ struct CuttingResult {
   double t_complete = -1.0;             // chip completion (time-step drop), -1: not detected
   double travel_complete = -1.0;        // tool travel at chip completion
   double dt_drop_ratio = 1.0;           // dt / running mean at detection
+  double dt_mean_at_drop_ratio = -1.0;  // running mean of dt before the drop / initial dt (-1: none)
   double travel_path = -1.0;            // first travel at which damage connects edge and surface
   double travel_first_drop = -1.0;      // first time-step drop (guard or not), -1: none
   double travel_separated = -1.0;       // first travel at which eroded points connect edge and surface

@@ -301,11 +301,16 @@ int cmd_run(const std::vector<std::string>& ids, const std::string& paper, const
       if (ch.status == "FAIL") {
         const bool known = !ch.known_failure.empty();
         if (!known || strict) ++unexpected;
-        std::cout << "  FAIL" << (known ? " (known)" : "") << " " << c.id << " " << ch.key << ": value "
-                  << fmt(ch.value) << " vs reference "
-                  << (ch.is_range ? "[" + fmt(ch.lower) + ", " + fmt(ch.upper) + "]" : fmt(ch.reference)) << " "
-                  << ch.units << " (error " << fmt(ch.error) << ", tolerance " << fmt(ch.tolerance)
-                  << (ch.relative_tol ? " rel" : "") << ")" << (known ? " — " + ch.known_failure : "") << "\n";
+        std::cout << "  FAIL" << (known ? " (known)" : "") << " " << c.id << " " << ch.key << ": ";
+        if (ch.has_value) {
+          std::cout << "value " << fmt(ch.value) << " vs reference "
+                    << (ch.is_range ? "[" + fmt(ch.lower) + ", " + fmt(ch.upper) + "]" : fmt(ch.reference)) << " "
+                    << ch.units << " (error " << fmt(ch.error) << ", tolerance " << fmt(ch.tolerance)
+                    << (ch.relative_tol ? " rel" : "") << ")";
+        } else {
+          std::cout << ch.message;  // an output the run does not define: no value to compare
+        }
+        std::cout << (known ? " — " + ch.known_failure : "") << "\n";
       } else if (ch.status == "NOT RUN" || ch.status == "ERROR" || ch.status == "INCONCLUSIVE") {
         std::cout << "  " << ch.status << " " << c.id << " " << ch.key << ": " << ch.message << "\n";
       }

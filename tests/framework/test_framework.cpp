@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <set>
 #include <thread>
@@ -865,6 +866,61 @@ source = "test"
   BOOST_TEST(r.checks[0].message.find("out of memory") != std::string::npos);
   BOOST_TEST(r.checks[1].status == "PASS");
   BOOST_TEST(r.status == "ERROR");
+}
+
+// A solver output that is not finite at every selected point (a stick zone that does not form, a
+// serration that is not there) is a FAIL: the run did not produce what the paper reports. Where the
+// solver defines the output at some of the points, those are used.
+BOOST_AUTO_TEST_CASE(a_solver_output_left_undefined_fails) {
+  if (!SolverRegistry::instance().find("toy_nan_solver")) {
+    SolverSpec sv;
+    sv.name = "toy_nan_solver";
+    sv.description = "y = a, undefined above 5";
+    sv.source = "test";
+    sv.params = {param("a", Dim::dimensionless, "input", 1.0, 0.0, 10.0)};
+    sv.scalars = {{"y", Dim::dimensionless, "a, NaN for a > 5"}};
+    sv.run = [](const Values& v, const ProgressFn&) {
+      RunOutput r;
+      const double a = v.at("a");
+      r.set_scalar("y", a > 5.0 ? std::numeric_limits<double>::quiet_NaN() : a, "1");
+      return r;
+    };
+    SolverRegistry::instance().add(sv);
+  }
+  const fs::path f = write_case("toy_nan", R"(status = "implemented"
+[[series]]
+name = "undefined"
+model = "toy_nan_solver"
+params = { a = 6 }
+[[series]]
+name = "partly"
+model = "toy_nan_solver"
+sweep = { param = "a", values = [2, 7] }
+[[checks]]
+key = "reads_undefined"
+kind = "reproduction"
+metric = "absolute"
+value = { series = "undefined", output = "y" }
+reference = 6
+tolerance = 0.1
+units = "1"
+source = "test"
+tolerance_source = "test"
+[[checks]]
+key = "reads_the_defined_point"
+kind = "reproduction"
+metric = "absolute"
+value = { series = "partly", output = "y", reduce = "max" }
+reference = 2
+tolerance = 0.1
+units = "1"
+source = "test"
+tolerance_source = "test"
+)");
+  const CaseResult r = run_case(load_case(f, "quick"), "quick", nullptr);
+  BOOST_TEST(r.checks[0].status == "FAIL");
+  BOOST_TEST(r.checks[0].message.find("does not define 'y'") != std::string::npos);
+  BOOST_TEST(r.checks[1].status == "PASS");
 }
 
 // A value within the measured scatter of a boundary is INCONCLUSIVE; outside it the verdict stands.

@@ -229,13 +229,22 @@ double select(const std::vector<SeriesResult>& series, const json& sel, const st
     lo = xmin + wf[0].get<double>() * (xmax - xmin);
     hi = xmin + wf[1].get<double>() * (xmax - xmin);
   }
+  std::size_t undefined = 0;  // points in the window whose value is not finite
   for (std::size_t i = 0; i < y.size(); ++i) {
     const double xv = has_x ? (*xcol)[i] : static_cast<double>(i);
-    if (xv >= lo && xv <= hi && std::isfinite(y[i]) && std::isfinite(xv)) {
-      xs.push_back(xv);
-      ys.push_back(y[i]);
+    if (!(xv >= lo && xv <= hi && std::isfinite(xv))) continue;
+    if (!std::isfinite(y[i])) {
+      ++undefined;
+      continue;
     }
+    xs.push_back(xv);
+    ys.push_back(y[i]);
   }
+  // as for a single value: a solver run that leaves the output undefined at every selected point
+  // (no sticking zone to average over, no serration to measure) has not produced what the paper
+  // reports, a FAIL; an empty window is NOT RUN
+  if (ys.empty() && undefined > 0 && s.solver)
+    throw Undefined{"the solver run does not define '" + out + "' (non-finite at every selected point)"};
   if (ys.empty()) throw NotRun{"no finite points of '" + out + "' in the selected window"};
   if (sel.contains("feature")) {
     const std::string f = sel["feature"].get<std::string>();
@@ -564,6 +573,19 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
       r.status = "FAIL";
       r.has_value = false;
       r.message = u.why;
+      // the check's tolerance and literal reference, as a judged check would carry them
+      if (!(cs.metric == "within" || (cs.reference.is_array() && cs.reference.size() == 2))) {
+        set_tolerance();
+        try {
+          if (!(cs.reference.is_object() && cs.reference.contains("series"))) {
+            r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference", cs.units));
+            r.has_reference = std::isfinite(r.reference);
+          }
+        } catch (const NotRun&) {
+        } catch (const Pending&) {
+        } catch (const Fault&) {
+        }
+      }
     } catch (const NotRun& nr) {
       r.status = "NOT RUN";
       r.message = nr.why;

@@ -471,6 +471,11 @@ void judge(CheckRecord& r) {
   apply_scatter(r);
 }
 
+// A check compared with an interval [lower, upper] rather than a reference and a tolerance.
+bool is_range_check(const CheckSpec& cs) {
+  return cs.metric == "within" || (cs.reference.is_array() && cs.reference.size() == 2);
+}
+
 }  // namespace
 
 std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector<SeriesResult>& series,
@@ -482,6 +487,18 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
     const Dim dim = unit_info(cs.units, field + ".units").dim;
     auto disp = [&](double si) { return from_si(si, cs.units, field + ".units"); };
     auto set_tolerance = [&]() { framework::set_tolerance(r, cs); };
+    // the paper's number of a check that could not be judged, when it is a literal or a file value
+    auto show_literal_reference = [&]() {
+      try {
+        if (!cs.reference.is_array() && !(cs.reference.is_object() && cs.reference.contains("series"))) {
+          r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference", cs.units));
+          r.has_reference = std::isfinite(r.reference);
+        }
+      } catch (const NotRun&) {
+      } catch (const Pending&) {
+      } catch (const Fault&) {
+      }
+    };
 
     if (!spec.implemented()) {
       r.status = "NOT IMPLEMENTED";
@@ -550,7 +567,7 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
         r.value = disp(select(series, cs.value, field + ".value"));
         r.has_value = true;
         if (!std::isfinite(r.value)) throw Fault{"value is not finite"};
-        if (cs.metric == "within" || (cs.reference.is_array() && cs.reference.size() == 2)) {
+        if (is_range_check(cs)) {
           r.is_range = true;
           r.lower = disp(reference_value(spec, series, cs.reference.at(0), dim, refs, field + ".reference[0]", cs.units));
           r.upper = disp(reference_value(spec, series, cs.reference.at(1), dim, refs, field + ".reference[1]", cs.units));
@@ -574,17 +591,9 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
       r.has_value = false;
       r.message = u.why;
       // the check's tolerance and literal reference, as a judged check would carry them
-      if (!(cs.metric == "within" || (cs.reference.is_array() && cs.reference.size() == 2))) {
+      if (!is_range_check(cs)) {
         set_tolerance();
-        try {
-          if (!(cs.reference.is_object() && cs.reference.contains("series"))) {
-            r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference", cs.units));
-            r.has_reference = std::isfinite(r.reference);
-          }
-        } catch (const NotRun&) {
-        } catch (const Pending&) {
-        } catch (const Fault&) {
-        }
+        show_literal_reference();
       }
     } catch (const NotRun& nr) {
       r.status = "NOT RUN";
@@ -592,15 +601,7 @@ std::vector<CheckRecord> evaluate_checks(const CaseSpec& spec, const std::vector
     } catch (const Pending& p) {
       r.status = "NOT IMPLEMENTED";
       r.message = p.why;
-      try {
-        if (!cs.reference.is_array() && !(cs.reference.is_object() && cs.reference.contains("series"))) {
-          r.reference = disp(reference_value(spec, series, cs.reference, dim, refs, field + ".reference", cs.units));
-          r.has_reference = std::isfinite(r.reference);
-        }
-      } catch (const NotRun&) {
-      } catch (const Pending&) {
-      } catch (const Fault&) {
-      }
+      show_literal_reference();
     }
     records.push_back(r);
   }
@@ -618,7 +619,7 @@ CheckRecord rejudge_check(const CaseSpec& spec, const CheckSpec& cs, const json&
   auto from_case = [](const json& ref) {
     return ref.is_number() || ref.is_string() || (ref.is_object() && (ref.contains("file") || ref.contains("unavailable")));
   };
-  const bool range = cs.metric == "within" || (cs.reference.is_array() && cs.reference.size() == 2);
+  const bool range = is_range_check(cs);
   if (!range) set_tolerance(r, cs);
   const json& rv = recorded.value("value", json());
   if (!rv.is_number()) {

@@ -13,11 +13,15 @@ foreach(case_file ${CUTBENCH_CASE_FILES})
     if(tiers_line MATCHES "\"${tier}\"")
       if(tier STREQUAL "quick")
         set(test_name "case:${paper}/${item}")
+        # the quick-tier cases share their solver runs (keyed by solver, parameters and the solver's
+        # source identity) through a run cache in the build tree: a run two cases need is computed once
+        set(share --run-cache ${CMAKE_BINARY_DIR}/runs-quick)
       else()
         set(test_name "case-full:${paper}/${item}")
+        set(share "")
       endif()
       add_test(NAME ${test_name}
-               COMMAND cutbench run ${paper}/${item} --tier ${tier} --out ${CMAKE_BINARY_DIR}/results-${tier} --ctest)
+               COMMAND cutbench run ${paper}/${item} --tier ${tier} --out ${CMAKE_BINARY_DIR}/results-${tier} ${share} --ctest)
       set_tests_properties(${test_name} PROPERTIES
         LABELS "${tier};paper:${paper};solver:${solver}"
         FIXTURES_SETUP "results_${tier}"

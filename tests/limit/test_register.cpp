@@ -70,9 +70,28 @@ BOOST_AUTO_TEST_CASE(steady_state_loop_with_contact_update_and_refinement) {
   bool hist = false;
   for (const auto& t : o.tables) hist = hist || t.name == "steady_state";
   BOOST_TEST(hist);
-  // the refinement with the mode-1 loop or with a search outside the eta2 loop is refused
+  // the refinement with the mode-1 loop is refused
   BOOST_CHECK_THROW(cut->run({{"steady_state", 1.0}, {"adapt_steps", 2.0}}, nullptr), cutbench::InputError);
-  BOOST_CHECK_THROW(cut->run({{"contact_search", 2.0}, {"adapt_steps", 2.0}}, nullptr), cutbench::InputError);
+}
+
+BOOST_AUTO_TEST_CASE(contact_search_with_refinement_at_a_fixed_phi) {
+  // Outside the eta2 loop a search with refinement does what the loop does at one phi: the natural
+  // separation on the uniform mesh sets l, then the permanent contact over l is refined.
+  cutbench::SolverRegistry reg;
+  cutbench::limit::register_solvers(reg);
+  const auto* cut = reg.find("limit_cutting");
+  BOOST_REQUIRE(cut);
+  const cutbench::Values base = {{"rake", 6.0 * M_PI / 180.0}, {"n", 6.0}, {"contact_search", 2.0}};
+  const auto plain = cut->run(base, nullptr);
+  cutbench::Values refined = base;
+  refined["adapt_steps"] = 2.0;
+  refined["refine"] = 1.0;
+  const auto o = cut->run(refined, nullptr);
+  BOOST_TEST(o.scalars.at("l_over_t1") == plain.scalars.at("l_over_t1"));
+  BOOST_TEST(o.scalars.at("solves") == 4.0);  // 1 natural-separation solve + 3 on the refined meshes
+  const cutbench::Values uniform = {{"rake", 6.0 * M_PI / 180.0}, {"n", 6.0},  // t1 = 1
+                                    {"contact_length", plain.scalars.at("l_over_t1")}};
+  BOOST_TEST(o.scalars.at("elements") > cut->run(uniform, nullptr).scalars.at("elements"));
 }
 
 // The outer loop checkpoints through the shared driver: the eta2 loop (Fig. 4, tangent exit) at

@@ -377,7 +377,7 @@ const DeclaredParams<CuttingRun>& cutting_declaration() {
              [](S& s, double v) { s.geometry.curl = v; })
         .add(switch_param("fit_curl", "with fit_eta2: fit chip_curl too, so that the free chip starts along eta2 and ends along eta2 + curl (Broyden steps on the start and exit angles, at most 14 solves, curl within +-120 deg)", false),
              [](S& s, double v) { s.modes.fit_curl = v != 0.0; })
-        .add(p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%) from the structured mesh; at a fixed geometry, or at every phi of the steady_state = 2 loop (with contact_search: l(phi) from the uniform mesh, then the refined permanent contact over l)", 0, 0, 10),
+        .add(p_int("adapt_steps", "dissipation-driven refinement steps (Doerfler 50%) from the structured mesh; at a fixed phi or at every phi of the steady_state = 2 loop (with contact_search: l from the uniform mesh, then the refined permanent contact over l)", 0, 0, 10),
              [](S& s, double v) { s.modes.adapt_steps = static_cast<int>(v); })
         .add(option_param("refine", "kind of the adaptive refinement",
                           {{"isotropic", "longest-edge bisection"},
@@ -414,8 +414,8 @@ CuttingRun cutting_run_from(const Values& given_in) {
     throw InputError("eta1", "a chip back at eta1 is free: streamline \"none\" or \"top\"");
   if (m.fit_eta && (m.search() || m.loop() || m.tangent()))
     throw InputError("fit_eta2", "the eta2 fit needs a fixed phi and contact length (contact_search = \"fixed\", steady_state = \"off\")");
-  if (m.adapt_steps > 0 && (m.loop() || (m.search() && !m.tangent())))
-    throw InputError("adapt_steps", "adaptive refinement needs steady_state = \"off\" or \"tangent_exit\", and a contact search only together with \"tangent_exit\"");
+  if (m.adapt_steps > 0 && m.loop())
+    throw InputError("adapt_steps", "adaptive refinement needs steady_state = \"off\" or \"tangent_exit\"");
   return r;
 }
 
@@ -454,11 +454,14 @@ public:
     return {res.contact_length, std::move(res.final)};
   }
 
-  // A fixed geometry, or the contact search (which sets c's contact length).
+  // A fixed geometry, or the contact search (which sets c's contact length); with refinement, the
+  // search runs on the uniform mesh and the refined permanent contact over the length found gives
+  // the solution, as at every phi of the tangent-exit loop.
   CuttingResult once(CuttingSetup& c) {
     if (!m_.search()) return fixed(c);
     auto found = search(c);
     c.contact_length = found.first;
+    if (m_.adapt_steps > 0) return fixed(c);
     return std::move(found.second);
   }
 

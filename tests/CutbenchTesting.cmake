@@ -11,18 +11,17 @@ function(cutbench_add_boost_test name)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} Boost::unit_test_framework
                         cutbench::warnings cutbench::sanitize)
   file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/junit)
+  set(logs --log_level=test_suite --report_level=short --logger=HRF,test_suite)
   set(rest "")
   set(tests ${name})
   foreach(suite IN LISTS ARG_SPLIT)
     list(APPEND rest "--run_test=!${suite}")
     list(APPEND tests ${name}:${suite})
     add_test(NAME ${name}:${suite}
-             COMMAND ${name} --run_test=${suite} --log_level=test_suite --report_level=short
-                     --logger=HRF,test_suite --logger=JUNIT,all,${CMAKE_BINARY_DIR}/junit/${name}.${suite}.xml)
+             COMMAND ${name} --run_test=${suite} ${logs} --logger=JUNIT,all,${CMAKE_BINARY_DIR}/junit/${name}.${suite}.xml)
   endforeach()
   add_test(NAME ${name}
-           COMMAND ${name} ${rest} --log_level=test_suite --report_level=short
-                   --logger=HRF,test_suite --logger=JUNIT,all,${CMAKE_BINARY_DIR}/junit/${name}.xml)
+           COMMAND ${name} ${rest} ${logs} --logger=JUNIT,all,${CMAKE_BINARY_DIR}/junit/${name}.xml)
   set_tests_properties(${tests} PROPERTIES
     LABELS "${ARG_LABELS}"
     ENVIRONMENT "OMP_NUM_THREADS=${CUTBENCH_TEST_THREADS};OMP_WAIT_POLICY=PASSIVE;LC_ALL=C;BOOST_TEST_COLOR_OUTPUT=no")

@@ -61,7 +61,8 @@ case "$method" in
     # (Fig 4, whose run Figs 3 and 5 share; the Fig 9 pair), then the Fig 8 transition sweep at
     # alpha = 30 deg (shared by Figs 9-12) with the cheap N = 4 and 8 convergence runs, the other rake
     # angles (Figs 8, 10, 16), friction (Figs 11, 15), hardening (Figs 12, 13), sigma_c (Fig 14),
-    # Fig 16's own bending runs, and the N = 20 convergence runs (2.4 runs' worth each) last. Two
+    # Fig 16's own bending runs. The N = 20 convergence runs (2.4 runs' worth each) come right after
+    # the other rake angles, so that Fig 8, the paper's central figure, is complete first. Two
     # copies of this script (one per core, started a few seconds apart) work through it together:
     # the run store's locks keep them on different runs, and each leaves to the other the runs it
     # is computing (--skip-running).
@@ -69,6 +70,7 @@ case "$method" in
     compute --case nairn2015/fig03 --case nairn2015/fig02 --case nairn2015/fig05 --case nairn2015/fig17
     compute --case nairn2015/fig08 --series mpm --series convergence_n4 --series convergence_n8
     compute --case nairn2015/fig08 --series mpm_a5 --series mpm_a15 --series mpm_a45
+    compute --case nairn2015/fig08 --series convergence_n20 --series convergence_touch
     compute --case nairn2015/fig10
     compute --case nairn2015/fig11 --case nairn2015/fig15
     compute --case nairn2015/fig12 --case nairn2015/fig13

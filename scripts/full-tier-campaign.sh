@@ -7,7 +7,15 @@
 # Needs a release build. Afterwards: `cutbench runs` (what is stored), record the cases whose runs
 # are complete (reports/full_tier/runs/README.md), commit the new .run files; before a machine
 # goes away, `git add -f` the checkpoints of unfinished runs.
+# To leave the machine to other work (a build, CI), start it in a session of its own:
+#   setsid nohup nice -n 15 bash scripts/full-tier-campaign.sh mpm > campaign.log 2>&1 &
+# Linux schedules sessions (autogroups) against each other before nice counts, so a niced campaign
+# in its own session still takes half of the CPU from a build in another one; the script therefore
+# lowers its session's weight too (only when it leads that session, so never a terminal's).
 set -uo pipefail
+if [ "$(ps -o sid= -p $$ | tr -d ' ')" = "$$" ] && [ -w /proc/self/autogroup ]; then
+  echo 19 > /proc/self/autogroup || true
+fi
 cd "${CUTBENCH_ROOT:-$(dirname "$0")/..}"
 method="${1:-}"
 cutbench="${2:-build/release/benchmarks/cli/cutbench}"

@@ -13,7 +13,7 @@
 # in its own session still takes half of the CPU from a build in another one; the script therefore
 # lowers its session's weight too (only when it leads that session, so never a terminal's).
 set -uo pipefail
-if [ "$(ps -o sid= -p $$ | tr -d ' ')" = "$$" ] && [ -w /proc/self/autogroup ]; then
+if [ "$(cut -d' ' -f6 /proc/$$/stat 2>/dev/null)" = "$$" ] && [ -w /proc/self/autogroup ]; then  # field 6: the session
   echo 19 > /proc/self/autogroup || true
 fi
 cd "${CUTBENCH_ROOT:-$(dirname "$0")/..}"

@@ -249,6 +249,38 @@ BOOST_AUTO_TEST_CASE(coulomb_fixed_point_anderson_matches_relaxed) {
   BOOST_TEST(a.coulomb.iterations <= 20);
 }
 
+BOOST_AUTO_TEST_CASE(coulomb_fixed_point_slip_matches_pressure) {
+  // The fixed point on the slip (coupled cone, dilatancy cancelled by the previous step's normal
+  // velocity) reaches the pressure iteration's state on the Table 3 chip (t1 = 0.5 mm, n = 6),
+  // both iterated to a change of 1e-5, and takes fewer steps; at convergence the rake face does
+  // not open where it carries load (w_n = 0 to the tolerance of the iterate).
+  const LimitModel model = cutting_model(test::table3_chip_t1_05());
+  CoulombOptions pressure;
+  pressure.tol = 1e-5;
+  pressure.max_iter = 80;
+  pressure.anderson_depth = 5;
+  CoulombOptions slip = pressure;
+  slip.variable = CoulombVariable::slip;
+  CoulombReport rp, rs;
+  const auto p = solve_limit_coulomb(model, {}, pressure, &rp);
+  const auto s = solve_limit_coulomb(model, {}, slip, &rs);
+  const Eigen::VectorXd pp = (-p.contact_rn).cwiseMax(0.0), ps = (-s.contact_rn).cwiseMax(0.0);
+  const double dp = (pp - ps).cwiseAbs().maxCoeff() / pp.maxCoeff();
+  double wn_loaded = 0.0;
+  for (Eigen::Index c = 0; c < s.contact_wn.size(); ++c)
+    if (ps[c] > 1e-3 * ps.maxCoeff()) wn_loaded = std::max(wn_loaded, std::abs(s.contact_wn[c]));
+  BOOST_TEST_MESSAGE("Table 3 chip: pressure " << rp.iterations << " steps, slip " << rs.iterations << ", collapse "
+                                               << p.collapse << " / " << s.collapse << ", max |dp|/max p " << dp
+                                               << ", max |w_n| where loaded " << wn_loaded << " (max |w_t| "
+                                               << s.contact_wt.cwiseAbs().maxCoeff() << ")");
+  BOOST_TEST(rp.converged);
+  BOOST_TEST(rs.converged);
+  BOOST_TEST(rs.iterations <= rp.iterations);
+  BOOST_TEST(std::abs(s.collapse / p.collapse - 1.0) < 1e-5);
+  BOOST_TEST(dp < 1e-3);
+  BOOST_TEST(wn_loaded < 1e-4 * s.contact_wt.cwiseAbs().maxCoeff());
+}
+
 BOOST_AUTO_TEST_CASE(tangent_loop_frictionless_keeps_merchant) {
   // Steady-state loop with φ* from the chip direction after the contact (η2, README 3.3):
   // without friction the straight chip leaves the contact along the rake face at φ_M

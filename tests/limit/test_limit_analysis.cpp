@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "cutbench/common/errors.hpp"
 #include "cutbench/limit/limit_analysis.hpp"
 
 using namespace cutbench::limit;
@@ -70,6 +71,36 @@ BOOST_AUTO_TEST_CASE(frictional_block_coulomb_fixed_point) {
   BOOST_TEST(std::abs(s.collapse - 0.3) < 1e-6);
   // all friction is dissipated at the interface: λ·1 = μ Σ p |w_t|
   BOOST_TEST(std::abs(s.friction_dissipation - s.collapse) < 1e-5);
+}
+
+BOOST_AUTO_TEST_CASE(frictional_block_coulomb_fixed_point_on_slip) {
+  // the same law by the fixed point on the slip: every step is the coupled cone with its dilatancy
+  // cancelled by the previous step's imposed normal velocity μ|w_t|; at convergence the base does not
+  // open (w_n = 0), the answer is μ q W and all of it is dissipated by friction
+  auto m = frictional_block_model(1.0, 1.0, 1.0, 0.3, 4, 4);
+  CoulombOptions opt;
+  opt.variable = CoulombVariable::slip;
+  CoulombReport rep;
+  const auto s = solve_limit_coulomb(m, quiet(), opt, &rep);
+  BOOST_TEST_MESSAGE("block coulomb on the slip μ=0.3 λ=" << s.collapse << " fixed-point iterations " << rep.iterations
+                                                          << " max |w_n| " << s.contact_wn.cwiseAbs().maxCoeff()
+                                                          << " max |w_t| " << s.contact_wt.cwiseAbs().maxCoeff());
+  BOOST_TEST(solved(s));
+  BOOST_TEST(rep.converged);
+  BOOST_TEST(std::abs(s.collapse - 0.3) < 1e-6);
+  BOOST_TEST(std::abs(s.friction_dissipation - s.collapse) < 1e-5);
+  BOOST_TEST(s.contact_wn.cwiseAbs().maxCoeff() < 1e-3 * s.contact_wt.cwiseAbs().maxCoeff());
+  // the associated cone alone (the first step) opens the sliding base by its dilatancy μ|w_t|
+  const auto a = solve_limit(m, quiet());
+  for (Eigen::Index c = 0; c < a.contact_wn.size(); ++c)
+    BOOST_TEST(std::abs(a.contact_wn[c] + 0.3 * std::abs(a.contact_wt[c])) < 1e-6);
+  // an imposed normal velocity needs the coupled cone with μ > 0
+  auto bad = m;
+  bad.contacts[0].tresca_bound = 1.0;
+  bad.contacts[0].normal_velocity = 0.1;
+  BOOST_CHECK_THROW(solve_limit(bad, quiet()), cutbench::InputError);
+  auto frictionless = frictional_block_model(1.0, 1.0, 1.0, 0.0, 4, 4);
+  BOOST_CHECK_THROW(solve_limit_coulomb(frictionless, quiet(), opt), cutbench::InputError);
 }
 
 BOOST_AUTO_TEST_CASE(frictional_block_shearing) {

@@ -376,6 +376,7 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     co.anderson_depth = c.coulomb_anderson_depth;
     co.relaxation = c.coulomb_anderson_depth > 0 ? c.coulomb_anderson_mixing : c.coulomb_relaxation;
     co.max_iter = c.coulomb_max_iter;
+    if (c.coulomb_on_slip && c.mu > 0.0) co.variable = CoulombVariable::slip;
     res.solution = solve_limit_coulomb(res.model, settings, co, &res.coulomb);
   } else {
     res.solution = solve_limit(res.model, settings);

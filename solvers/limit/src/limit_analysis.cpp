@@ -205,9 +205,11 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
   std::vector<Trip> tg;
   std::vector<double> hvec;
   int m = 0;
-  std::vector<int> rn_row(static_cast<std::size_t>(nc), -1);
+  std::vector<int> rn_row(static_cast<std::size_t>(nc), -1), cone_row(static_cast<std::size_t>(nc), -1);
   for (int c = 0; c < nc; ++c) {
     const auto& cn = model.contacts[static_cast<std::size_t>(c)];
+    if (!std::isfinite(cn.normal_velocity) || (cn.normal_velocity != 0.0 && (std::isfinite(cn.tresca_bound) || !(cn.mu > 0.0))))
+      throw InputError("contact", "an imposed normal velocity needs the coupled cone with mu > 0 (node " + std::to_string(cn.node) + ")");
     const int dx = 2 * cn.node, dy = dx + 1;
     const double Fn = cn.normal.x() * F[dx] + cn.normal.y() * F[dy];
     const double F0n = cn.normal.x() * F0[dx] + cn.normal.y() * F0[dy];
@@ -227,6 +229,7 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
       ++m;
       continue;
     }
+    cone_row[static_cast<std::size_t>(c)] = m;
     for (double sgn : {1.0, -1.0}) {
       add_row(tg, m, dx, cn.mu * cn.normal.x());
       add_row(tg, m, dy, cn.mu * cn.normal.y());
@@ -257,6 +260,16 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
       for (SpMat::InnerIterator it(btr, d); it; ++it) prob.c[it.row()] -= v * it.value();
       offset -= v * F0[d];
     }
+  }
+  // imposed normal velocities g at coupled contacts: the objective gains the power −g (r_n + F0_n)
+  // (as for an imposed velocity on a free normal dof), taken out of the collapse value below
+  for (int c = 0; c < nc; ++c) {
+    const auto& cn = model.contacts[static_cast<std::size_t>(c)];
+    if (cn.normal_velocity == 0.0) continue;
+    const int dx = 2 * cn.node, dy = dx + 1;
+    for (SpMat::InnerIterator it(btr, dx); it; ++it) prob.c[it.row()] -= cn.normal_velocity * cn.normal.x() * it.value();
+    for (SpMat::InnerIterator it(btr, dy); it; ++it) prob.c[it.row()] -= cn.normal_velocity * cn.normal.y() * it.value();
+    if (load_mode) prob.c[ilam] += cn.normal_velocity * (cn.normal.x() * F[dx] + cn.normal.y() * F[dy]);
   }
   prob.A.resize(p, n);
   prob.A.setFromTriplets(ta.begin(), ta.end());
@@ -290,6 +303,7 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
   sol.contact_rn = VectorXd::Zero(nc);
   sol.contact_rt = VectorXd::Zero(nc);
   sol.contact_wt = VectorXd::Zero(nc);
+  sol.contact_wn = VectorXd::Zero(nc);
   const VectorXd sig = r.x.head(nsig);
   const double lam = load_mode ? r.x[ilam] : 0.0;
   const VectorXd fint = bt * sig - lam * F - F0;
@@ -297,12 +311,17 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
     const auto& cn = model.contacts[static_cast<std::size_t>(c)];
     const Vector2d tt(-cn.normal.y(), cn.normal.x());
     const double wt = -r.y[row_of_contact[static_cast<std::size_t>(c)]];
-    const double wn = rn_row[static_cast<std::size_t>(c)] >= 0 ? -r.z[rn_row[static_cast<std::size_t>(c)]] : 0.0;
+    const int cr = cone_row[static_cast<std::size_t>(c)];
+    const double wn = rn_row[static_cast<std::size_t>(c)] >= 0 ? -r.z[rn_row[static_cast<std::size_t>(c)]]
+                                                             : cn.normal_velocity - cn.mu * (r.z[cr] + r.z[cr + 1]);
     sol.velocity[2 * cn.node] = wt * tt.x() + wn * cn.normal.x();
     sol.velocity[2 * cn.node + 1] = wt * tt.y() + wn * cn.normal.y();
     sol.contact_wt[c] = wt;
     sol.contact_rt[c] = r.x[nsig + c];
+    sol.contact_wn[c] = wn;
     sol.contact_rn[c] = cn.normal.x() * fint[2 * cn.node] + cn.normal.y() * fint[2 * cn.node + 1];
+    if (cn.normal_velocity != 0.0)
+      sol.collapse -= cn.normal_velocity * (sol.contact_rn[c] + cn.normal.x() * F0[2 * cn.node] + cn.normal.y() * F0[2 * cn.node + 1]);
     sol.friction_dissipation += std::abs(sol.contact_rt[c] * wt);
   }
   sol.slider_rn = VectorXd::Zero(ns);
@@ -337,31 +356,52 @@ LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings
                                   CoulombReport* report) {
   if (opt.anderson_depth < 0) throw InputError("anderson_depth", "must be >= 0");
   if (!(opt.relaxation > 0.0 && opt.relaxation <= 1.0)) throw InputError("relaxation", "must be in (0, 1]");
+  const bool on_slip = opt.variable == CoulombVariable::slip;
+  if (on_slip)
+    for (const auto& c : model.contacts)
+      if (!(c.mu > 0.0)) throw InputError("coulomb_variable", "the fixed point on the slip needs mu > 0 at every contact node");
   CoulombReport rep;
   auto solve = [&]() {
     LimitSolution s = solve_limit(model, settings);
     rep.ipm_iterations.push_back(s.socp.iterations);
     return s;
   };
-  // start: the associated (coupled) formulation gives a first pressure distribution
-  for (auto& c : model.contacts) c.tresca_bound = std::numeric_limits<double>::quiet_NaN();
+  // the iterate x (pressure p or imposed normal velocity g) and its image G(x) from a solution
+  auto image = [&](const LimitSolution& s) -> VectorXd {
+    if (!on_slip) return (-s.contact_rn).cwiseMax(0.0);
+    VectorXd g(s.contact_wt.size());
+    for (Eigen::Index c = 0; c < g.size(); ++c) g[c] = model.contacts[static_cast<std::size_t>(c)].mu * std::abs(s.contact_wt[c]);
+    return g;
+  };
+  auto apply = [&](const VectorXd& x) {
+    for (std::size_t c = 0; c < model.contacts.size(); ++c) {
+      auto& cn = model.contacts[c];
+      const double xc = x[static_cast<Eigen::Index>(c)];
+      if (on_slip)
+        cn.normal_velocity = xc;
+      else
+        cn.tresca_bound = cn.mu * xc;
+    }
+  };
+  // start: the associated (coupled) formulation gives the first pressure and slip
+  for (auto& c : model.contacts) {
+    c.tresca_bound = std::numeric_limits<double>::quiet_NaN();
+    c.normal_velocity = 0.0;
+  }
   LimitSolution sol = solve();
-  const auto nc = static_cast<Eigen::Index>(model.contacts.size());
-  VectorXd p = (-sol.contact_rn).cwiseMax(0.0);
+  VectorXd p = image(sol);
   rep.collapse_history.push_back(sol.collapse);
   std::deque<VectorXd> dp, df;  // Anderson history: differences of iterates and residuals
   VectorXd p_prev, f_prev;
   for (int it = 1; it <= opt.max_iter; ++it) {
-    for (Eigen::Index c = 0; c < nc; ++c) {
-      auto& cn = model.contacts[static_cast<std::size_t>(c)];
-      cn.tresca_bound = cn.mu * p[c];
-    }
+    apply(p);
     sol = solve();
-    const VectorXd g = (-sol.contact_rn).cwiseMax(0.0);
+    const VectorXd g = image(sol);
     const VectorXd f = g - p;
     const double change = f.cwiseAbs().maxCoeff() / std::max(1e-12, g.cwiseAbs().maxCoeff());
     rep.iterations = it;
     rep.change = change;
+    rep.change_history.push_back(change);
     rep.collapse_history.push_back(sol.collapse);
     if (change < opt.tol) {
       rep.converged = true;

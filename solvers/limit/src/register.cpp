@@ -341,6 +341,11 @@ const DeclaredParams<CuttingRun>& cutting_declaration() {
         .add(option_param("coulomb_update", "update of the contact pressure between fixed-point steps",
                           {{"relaxed", "p <- 0.5 g(p) + 0.5 p"}, {"anderson", "Anderson acceleration, depth 5, mixing 1"}}, "anderson"),
              [](S& s, double v) { s.geometry.coulomb_anderson_depth = v != 0.0 ? CuttingSetup{}.coulomb_anderson_depth : 0; })
+        .add(option_param("coulomb_variable", "variable of the Coulomb fixed point",
+                          {{"pressure", "the contact pressure (Tresca bounds mu p from the previous step)"},
+                           {"slip", "the slip (coupled cone, its dilatancy mu |w_t| cancelled by the previous step's)"}},
+                          "slip"),
+             [](S& s, double v) { s.geometry.coulomb_on_slip = v != 0.0; })
         .add(option_param("streamline", "free surfaces held as streamlines (v.n = 0)",
                           {{"none", "no surface held"}, {"top", "the uncut top surface"}, {"top_back", "the uncut top and the chip back"},
                            {"top_back_beyond", "the uncut top and the chip back beyond the contact length"}},
@@ -774,9 +779,24 @@ RunOutput cutting_output(const CuttingRun& run, const CuttingSetup& c, const Ste
     for (int i : r.coulomb.ipm_iterations) total += i;
     put("coulomb_ipm_iterations", total, "1");
   }
+  put("coulomb_change", r.coulomb.change, "1");
+  if (!r.coulomb.collapse_history.empty()) {
+    Table hist;
+    hist.name = "coulomb_history";
+    std::vector<double> step, change, fc;
+    for (std::size_t i = 0; i < r.coulomb.collapse_history.size(); ++i) {
+      step.push_back(static_cast<double>(i));
+      change.push_back(i == 0 ? 0.0 : r.coulomb.change_history[i - 1]);
+      fc.push_back(r.coulomb.collapse_history[i] / (c.k * c.t1));
+    }
+    hist.add("step", "1", step);
+    hist.add("change", "1", change);
+    hist.add("fc_bar", "1", fc);
+    out.tables.push_back(std::move(hist));
+  }
   if (c.mu > 0.0 && c.coulomb_fixed_point && !r.coulomb.converged)
-    out.notes.push_back("Coulomb fixed point not converged (last relative pressure change " +
-                        std::to_string(r.coulomb.change) + ")");
+    out.notes.push_back(std::string("Coulomb fixed point not converged (last relative ") +
+                        (c.coulomb_on_slip ? "slip" : "pressure") + " change " + std::to_string(r.coulomb.change) + ")");
   add_solver_stats(out, r.solution, seconds);
   Table contact;
   contact.name = "rake_contact";
@@ -836,6 +856,11 @@ SolverSpec cutting_spec() {
                 {"fc_bar", "1", "F_c / (k t1 w)"},
                 {"l_over_t1", "1", "contact length / t1"},
                 {"elements", "1", "elements of the mesh"}}},
+              {"coulomb_history",
+               "steps of the last Coulomb fixed point (on the pressure or the slip)",
+               {{"step", "1", "fixed-point step (0: the coupled first solve)"},
+                {"change", "1", "max |G(x) - x| / max |G(x)| of the iterate x (0 at step 0)"},
+                {"fc_bar", "1", "F_c / (k t1 w) of the step's solve"}}},
               {"refinement",
                "the final configuration after each adaptive refinement step (adapt_steps > 0; step 0: the structured mesh)",
                {{"step", "1", "refinement step"},
@@ -883,8 +908,9 @@ SolverSpec cutting_spec() {
                {"contact_yield_fraction", Dim::dimensionless, "share of the stress points of the elements on the contact with sqrt(J2)/k >= 0.99"},
                {"solves", Dim::dimensionless, "limit-analysis problems solved (Coulomb steps excluded)"},
                {"elements", Dim::dimensionless, "elements of the (final) mesh"},
-               {"coulomb_iterations", Dim::dimensionless, "fixed-point iterations on the contact pressure"},
-               {"coulomb_ipm_iterations", Dim::dimensionless, "interior-point iterations of all the solves of the last fixed point on the contact pressure"},
+               {"coulomb_iterations", Dim::dimensionless, "Coulomb fixed-point iterations (on the contact pressure or the slip)"},
+               {"coulomb_change", Dim::dimensionless, "last relative change of the Coulomb fixed point's iterate (converged below 1e-3)"},
+               {"coulomb_ipm_iterations", Dim::dimensionless, "interior-point iterations of all the solves of the last Coulomb fixed point"},
                {"iterations", Dim::dimensionless, "interior-point iterations (last solve)"},
                {"kkt_dimension", Dim::dimensionless, "size of the KKT system"},
                {"solve_time", Dim::time, "wall time of the solves"}};

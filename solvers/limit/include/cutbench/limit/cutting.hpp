@@ -45,6 +45,13 @@ struct CuttingSetup {
   // separation allowed) after the first step; set by natural_contact_length()
   bool unilateral = false;
   int coulomb_max_iter = 40;
+  // the fixed point's variable: true = the slip, false = the contact pressure (CoulombOptions). The
+  // slip is the default: each step satisfies the Coulomb bound on its own nodal reactions, and it
+  // takes fewer steps (Table 3 chip 5 against 7; fig20's mu = 1 point with 4 refinement steps 21
+  // against 32); where neither converges (10 steps at mu = 1) the slip stalls at a change of about
+  // 5e-3 and the pressure at 0.36 (solvers/limit/README.md sec. 3.1, figueiredo2024 FINDINGS F20).
+  // At μ = 0 (a unilateral contact only) the pressure is used.
+  bool coulomb_on_slip = true;
   // Steady-state streamline condition on the free surfaces (v·n = 0, frictionless, normal
   // reaction free): 0 = none (surfaces traction-free, material may cross them), 1 = the uncut
   // top surface y = t1 ahead of S, 2 = the top surface and the chip back surface.

@@ -38,6 +38,11 @@ struct ContactNode {
   // NaN: Coulomb coupled to the current normal reaction (|r_t| + μ r_n ≤ 0, associated form).
   // Finite g: Tresca-type bound |r_t| ≤ g (one step of the fixed point on the pressure).
   double tresca_bound = std::numeric_limits<double>::quiet_NaN();
+  // Coupled form only: a normal velocity g imposed along n (toward the rigid body) on top of the
+  // cone's own normal velocity −μ(z₊ + z₋), the dilatancy μ|w_t| of the associated law. The slip
+  // fixed point sets g = μ|w_t| of the previous solve, so that at convergence w_n = 0 where the
+  // contact slides or sticks (non-associated Coulomb); g = 0 is the associated cone.
+  double normal_velocity = 0.0;
 };
 
 struct LimitModel {
@@ -76,6 +81,7 @@ struct LimitSolution {
   double plastic_dissipation = 0.0;
   // per contact node (same order as LimitModel::contacts)
   Eigen::VectorXd contact_rn, contact_rt, contact_wt;
+  Eigen::VectorXd contact_wn;         // normal velocity along n (> 0 toward the rigid body)
   double friction_dissipation = 0.0;  // Σ |r_t w_t|
   // per slider (same order as LimitModel::sliders): normal reaction n·(Bᵀσ − λF − F0)
   Eigen::VectorXd slider_rn;
@@ -83,7 +89,10 @@ struct LimitSolution {
 
 LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings = {});
 
-// Coulomb friction with permanent contact (w_n = 0) by a fixed point on the contact pressure:
+// Coulomb friction with w_n = 0 (non-associated) by a fixed point, on the contact pressure or on
+// the slip (`CoulombOptions::variable`).
+//
+// Pressure (the default):
 // solve with |r_t| ≤ μ p_k (p_k from the previous solution, first from the coupled form), update
 // p_{k+1} from −r_n, until max|Δp|/max p < tol. Each step is a limit problem with a Tresca-type
 // friction dissipation μ p_k |w_t|; at the fixed point the friction is non-associated Coulomb
@@ -93,10 +102,22 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings 
 // `relaxation`); > 0 is Anderson acceleration (type II) of depth m with mixing ω: the new p is
 // the mixed step minus its projection on the last m differences of the iterates and residuals
 // (least squares), clipped to p ≥ 0; the history restarts when the residual grows by more than
-// `anderson_restart`. (Solving the steps before convergence to a looser SOCP tolerance does not
+// `anderson_restart`.
+//
+// Slip (de Saxcé's bipotential route): every step is the coupled (associated) cone
+// |r_t| + μ r_n ≤ 0 on the current nodal reactions, whose normality separates a sliding node by
+// μ|w_t|; that dilatancy is cancelled by the imposed normal velocity g = μ|w_t| of the previous
+// step (ContactNode::normal_velocity). The iterate is g, the same update applies, and the change is
+// max|μ|w_t| − g| / max μ|w_t|. A sticking node has w_t = 0, so its friction bound no longer
+// depends on the statically indeterminate nodal pressures of a stick zone (figueiredo2024
+// FINDINGS F20). At convergence w_n = 0 where the cone is active on one side and the Coulomb
+// conditions hold as in the pressure iteration; a node at the apex (r = 0) may separate. Needs
+// μ > 0 at every contact node (at μ = 0 the cone has no normal row). (Solving the steps before convergence to a looser SOCP tolerance does not
 // pay: the pressure of an interior-point solution stopped at a relative gap of 1e-5 is off by about
 // 1e-3, the fixed point's own tolerance, and the iteration then needs more steps.)
+enum class CoulombVariable { pressure, slip };
 struct CoulombOptions {
+  CoulombVariable variable = CoulombVariable::pressure;
   int max_iter = 30;
   double tol = 1e-3;
   double relaxation = 1.0;
@@ -107,7 +128,8 @@ struct CoulombReport {
   int iterations = 0;
   bool converged = false;
   double change = 0.0;
-  std::vector<double> collapse_history;
+  std::vector<double> collapse_history;  // per solve, the first (coupled) one included
+  std::vector<double> change_history;    // per fixed-point step: max|G(x) − x| / max|G(x)|
   std::vector<int> ipm_iterations;      // interior-point iterations per solve (the first included)
 };
 LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings = {}, const CoulombOptions& opt = {},

@@ -10,6 +10,10 @@ function(cutbench_add_boost_test name)
                              CUTBENCH_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} Boost::unit_test_framework
                         cutbench::warnings cutbench::sanitize)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+  if(CUTBENCH_SANITIZE OR CUTBENCH_TSAN)  # release_only.hpp: the long repeats run in the release suite
+    target_compile_definitions(${name} PRIVATE CUTBENCH_SANITIZED_BUILD)
+  endif()
   file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/junit)
   set(logs --log_level=test_suite --report_level=short --logger=HRF,test_suite)
   set(rest "")

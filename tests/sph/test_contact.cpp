@@ -6,6 +6,7 @@
 #include "cutbench/sph/lattice.hpp"
 #include "cutbench/sph/solid.hpp"
 #include "cutbench/sph/tool.hpp"
+#include "release_only.hpp"
 
 using namespace cutbench::sph;
 namespace tt = boost::test_tools;
@@ -92,7 +93,8 @@ BOOST_AUTO_TEST_CASE(block_sliding_with_coulomb_friction) {
 // previous test slides on a conducting half-plane tool. With (almost) no conduction the tool holds
 // exactly beta of the friction heat and the block 1 - beta, beta = e_tool / (e_tool + e_work),
 // e = sqrt(k rho c) by default; with conduction the total is conserved.
-BOOST_AUTO_TEST_CASE(friction_heat_split_between_tool_and_workpiece) {
+BOOST_AUTO_TEST_CASE(friction_heat_split_between_tool_and_workpiece,
+                     CUTBENCH_RELEASE_ONLY("paths covered by block_sliding_with_coulomb_friction and test_sph_cutting/cutting_friction_heat_split")) {
   const int nx = 12, ny = 5;
   const double dx = 1e-4, mu = 0.3, v0 = 1.0, t_stop = 1e-4;
   const double g = v0 / (mu * t_stop);

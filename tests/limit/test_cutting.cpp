@@ -281,6 +281,41 @@ BOOST_AUTO_TEST_CASE(coulomb_fixed_point_slip_matches_pressure) {
   BOOST_TEST(wn_loaded < 1e-4 * s.contact_wt.cwiseAbs().maxCoeff());
 }
 
+BOOST_AUTO_TEST_CASE(coulomb_fixed_point_started_from_its_solution) {
+  // Started from its own converged iterate (the start a refined mesh gets from the previous one,
+  // here on the same mesh: the rake-face profile interpolated back onto the contact nodes must
+  // return the iterate exactly), the fixed point on the slip stops within two steps with the same
+  // collapse; a start of the wrong size is refused.
+  CuttingSetup c = test::table3_chip_t1_05();
+  const LimitModel model = cutting_model(c);
+  CoulombOptions slip;
+  slip.tol = 1e-5;
+  slip.max_iter = 80;
+  slip.anderson_depth = 5;
+  slip.variable = CoulombVariable::slip;
+  CuttingResult first;
+  first.model = model;
+  first.solution = solve_limit_coulomb(model, {}, slip, &first.coulomb);
+  BOOST_REQUIRE(first.coulomb.converged);
+  c.coulomb_start = coulomb_profile(first, c);
+  BOOST_REQUIRE(c.coulomb_start.size() == model.contacts.size());
+  const Eigen::VectorXd back = coulomb_start_on(model, c);
+  BOOST_TEST((back - first.coulomb.iterate).cwiseAbs().maxCoeff() == 0.0);
+  CoulombOptions warm = slip;
+  warm.start = back;
+  CoulombReport rw;
+  const auto again = solve_limit_coulomb(model, {}, warm, &rw);
+  BOOST_TEST_MESSAGE("Table 3 chip: " << first.coulomb.iterations << " steps from the coupled solve, " << rw.iterations
+                                      << " from the converged iterate; collapse " << first.solution.collapse << " / "
+                                      << again.collapse);
+  BOOST_TEST(rw.converged);
+  BOOST_TEST(rw.iterations <= 2);
+  BOOST_TEST(rw.iterations < first.coulomb.iterations);
+  BOOST_TEST(std::abs(again.collapse / first.solution.collapse - 1.0) < 1e-5);
+  warm.start = Eigen::VectorXd::Zero(back.size() + 1);
+  BOOST_CHECK_THROW(solve_limit_coulomb(model, {}, warm), cutbench::InputError);
+}
+
 BOOST_AUTO_TEST_CASE(tangent_loop_frictionless_keeps_merchant) {
   // Steady-state loop with φ* from the chip direction after the contact (η2, README 3.3):
   // without friction the straight chip leaves the contact along the rake face at φ_M

@@ -11,6 +11,7 @@
 namespace cutbench::limit {
 
 using Eigen::Vector2d;
+using Eigen::VectorXd;
 
 double chip_thickness(double t1, double phi, double alpha) { return t1 * std::cos(phi - alpha) / std::sin(phi); }
 
@@ -367,6 +368,42 @@ CuttingResult solve_cutting(const CuttingSetup& c, const SocpSettings& settings)
   return solve_cutting_on(cutting_model(c), c, settings);
 }
 
+namespace {
+// distance of a contact node along the rake face, the coordinate of CuttingSetup::coulomb_start
+double rake_coordinate(const LimitModel& m, const ContactNode& cn, double alpha) {
+  return m.mesh.nodes[static_cast<std::size_t>(cn.node)].dot(Vector2d(std::sin(alpha), std::cos(alpha)));
+}
+}  // namespace
+
+VectorXd coulomb_start_on(const LimitModel& m, const CuttingSetup& c) {
+  const auto& prof = c.coulomb_start;
+  VectorXd x(static_cast<Eigen::Index>(m.contacts.size()));
+  for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+    const double s = rake_coordinate(m, m.contacts[i], c.alpha);
+    auto hi = std::lower_bound(prof.begin(), prof.end(), s, [](const auto& a, double v) { return a.first < v; });
+    double v;
+    if (hi == prof.begin()) v = hi->second;
+    else if (hi == prof.end()) v = prof.back().second;
+    else {
+      const auto lo = std::prev(hi);
+      const double w = hi->first > lo->first ? (s - lo->first) / (hi->first - lo->first) : 0.0;
+      v = lo->second + w * (hi->second - lo->second);
+    }
+    x[static_cast<Eigen::Index>(i)] = v;
+  }
+  return x;
+}
+
+std::vector<std::pair<double, double>> coulomb_profile(const CuttingResult& r, const CuttingSetup& c) {
+  std::vector<std::pair<double, double>> prof;
+  const auto& it = r.coulomb.iterate;
+  if (it.size() != static_cast<Eigen::Index>(r.model.contacts.size())) return prof;
+  for (std::size_t i = 0; i < r.model.contacts.size(); ++i)
+    prof.emplace_back(rake_coordinate(r.model, r.model.contacts[i], c.alpha), it[static_cast<Eigen::Index>(i)]);
+  std::sort(prof.begin(), prof.end());
+  return prof;
+}
+
 CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const SocpSettings& settings) {
   CuttingResult res;
   res.model = std::move(model);
@@ -377,6 +414,7 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     co.relaxation = c.coulomb_anderson_depth > 0 ? c.coulomb_anderson_mixing : c.coulomb_relaxation;
     co.max_iter = c.coulomb_max_iter;
     if (c.coulomb_on_slip && c.mu > 0.0) co.variable = CoulombVariable::slip;
+    if (!c.coulomb_start.empty()) co.start = coulomb_start_on(res.model, c);
     res.solution = solve_limit_coulomb(res.model, settings, co, &res.coulomb);
   } else {
     res.solution = solve_limit(res.model, settings);
@@ -526,8 +564,10 @@ CuttingResult adapt_cutting(const CuttingSetup& c, const AdaptOptions& opt, std:
   if (!(opt.fraction > 0.0 && opt.fraction <= 1.0)) throw InputError("fraction", "must be in (0, 1]");
   Mesh mesh = cutting_model(c).mesh;
   std::vector<CuttingAdaptStep> refinement;
+  CuttingSetup cs = c;
   for (int step = 0;; ++step) {
-    CuttingResult r = solve_cutting_on(cutting_model_on_mesh(mesh, c), c, settings);
+    CuttingResult r = solve_cutting_on(cutting_model_on_mesh(mesh, cs), cs, settings);
+    if (c.coulomb_warm_start) cs.coulomb_start = coulomb_profile(r, c);
     refinement.push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.stick_length_fraction});
     if (history) history->push_back(refinement.back());
     if (step == opt.steps) {

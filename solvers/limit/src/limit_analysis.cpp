@@ -251,13 +251,17 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
 
   SocpProblem prob;
   prob.c = VectorXd::Zero(n);
+  // the power of a velocity v imposed on dof d, v (B^T sigma)_d, enters the objective as -v B_d
+  auto impose_velocity = [&](int d, double v) {
+    for (SpMat::InnerIterator it(btr, d); it; ++it) prob.c[it.row()] -= v * it.value();
+  };
   double offset = 0.0;
   if (load_mode) {
     prob.c[ilam] = -1.0;
   } else {
     for (const auto& [d, v] : model.fixed) {
       if (v == 0.0) continue;
-      for (SpMat::InnerIterator it(btr, d); it; ++it) prob.c[it.row()] -= v * it.value();
+      impose_velocity(d, v);
       offset -= v * F0[d];
     }
   }
@@ -267,8 +271,8 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings)
     const auto& cn = model.contacts[static_cast<std::size_t>(c)];
     if (cn.normal_velocity == 0.0) continue;
     const int dx = 2 * cn.node, dy = dx + 1;
-    for (SpMat::InnerIterator it(btr, dx); it; ++it) prob.c[it.row()] -= cn.normal_velocity * cn.normal.x() * it.value();
-    for (SpMat::InnerIterator it(btr, dy); it; ++it) prob.c[it.row()] -= cn.normal_velocity * cn.normal.y() * it.value();
+    impose_velocity(dx, cn.normal_velocity * cn.normal.x());
+    impose_velocity(dy, cn.normal_velocity * cn.normal.y());
     if (load_mode) prob.c[ilam] += cn.normal_velocity * (cn.normal.x() * F[dx] + cn.normal.y() * F[dy]);
   }
   prob.A.resize(p, n);
@@ -383,14 +387,25 @@ LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings
         cn.tresca_bound = cn.mu * xc;
     }
   };
-  // start: the associated (coupled) formulation gives the first pressure and slip
+  if (opt.start.size() > 0 && (opt.start.size() != static_cast<Eigen::Index>(model.contacts.size()) ||
+                               !opt.start.allFinite() || opt.start.minCoeff() < 0.0))
+    throw InputError("start", "one finite value >= 0 per contact node");
+  if (opt.start.size() > 0 && opt.max_iter < 1) throw InputError("max_iter", "must be >= 1 with a start");
+  // start: the given iterate, or the associated (coupled) formulation's pressure and slip
   for (auto& c : model.contacts) {
     c.tresca_bound = std::numeric_limits<double>::quiet_NaN();
     c.normal_velocity = 0.0;
   }
-  LimitSolution sol = solve();
-  VectorXd p = image(sol);
-  rep.collapse_history.push_back(sol.collapse);
+  LimitSolution sol;
+  VectorXd p;
+  if (opt.start.size() > 0) {
+    p = opt.start;
+  } else {
+    sol = solve();
+    p = image(sol);
+    rep.collapse_history.push_back(sol.collapse);
+    rep.iterate = p;
+  }
   std::deque<VectorXd> dp, df;  // Anderson history: differences of iterates and residuals
   VectorXd p_prev, f_prev;
   for (int it = 1; it <= opt.max_iter; ++it) {
@@ -403,6 +418,7 @@ LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings
     rep.change = change;
     rep.change_history.push_back(change);
     rep.collapse_history.push_back(sol.collapse);
+    rep.iterate = g;
     if (change < opt.tol) {
       rep.converged = true;
       break;

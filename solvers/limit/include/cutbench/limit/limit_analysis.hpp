@@ -96,7 +96,10 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings 
 // solve with |r_t| ≤ μ p_k (p_k from the previous solution, first from the coupled form), update
 // p_{k+1} from −r_n, until max|Δp|/max p < tol. Each step is a limit problem with a Tresca-type
 // friction dissipation μ p_k |w_t|; at the fixed point the friction is non-associated Coulomb
-// (no dilatancy), which the coupled form is not (see README).
+// (no dilatancy), which the coupled form is not (see README). Solving the steps before
+// convergence to a looser SOCP tolerance does not pay: the pressure of an interior-point solution
+// stopped at a relative gap of 1e-5 is off by about 1e-3, the fixed point's own tolerance, and the
+// iteration then needs more steps.
 //
 // The update: `anderson_depth` = 0 is the relaxed iteration p ← ω g(p) + (1 − ω) p (ω =
 // `relaxation`); > 0 is Anderson acceleration (type II) of depth m with mixing ω: the new p is
@@ -112,9 +115,10 @@ LimitSolution solve_limit(const LimitModel& model, const SocpSettings& settings 
 // depends on the statically indeterminate nodal pressures of a stick zone (figueiredo2024
 // FINDINGS F20). At convergence w_n = 0 where the cone is active on one side and the Coulomb
 // conditions hold as in the pressure iteration; a node at the apex (r = 0) may separate. Needs
-// μ > 0 at every contact node (at μ = 0 the cone has no normal row). (Solving the steps before convergence to a looser SOCP tolerance does not
-// pay: the pressure of an interior-point solution stopped at a relative gap of 1e-5 is off by about
-// 1e-3, the fixed point's own tolerance, and the iteration then needs more steps.)
+// μ > 0 at every contact node (at μ = 0 the cone has no normal row).
+//
+// Start: the coupled solve's image, or `CoulombOptions::start` (the iterate of another mesh,
+// interpolated onto this one's contact nodes: adapt_cutting's warm start across refinement steps).
 enum class CoulombVariable { pressure, slip };
 struct CoulombOptions {
   CoulombVariable variable = CoulombVariable::pressure;
@@ -123,14 +127,18 @@ struct CoulombOptions {
   double relaxation = 1.0;
   int anderson_depth = 0;
   double anderson_restart = 2.0;
+  // a start for the iterate (one value per contact node, the variable's own: p or g); empty: the
+  // coupled (associated) solve gives the first iterate
+  Eigen::VectorXd start;
 };
 struct CoulombReport {
   int iterations = 0;
   bool converged = false;
   double change = 0.0;
-  std::vector<double> collapse_history;  // per solve, the first (coupled) one included
+  std::vector<double> collapse_history;  // per solve, the first (coupled) one included (none with a start)
   std::vector<double> change_history;    // per fixed-point step: max|G(x) − x| / max|G(x)|
   std::vector<int> ipm_iterations;      // interior-point iterations per solve (the first included)
+  Eigen::VectorXd iterate;              // G(x) of the last solve, per contact node (a start for another mesh)
 };
 LimitSolution solve_limit_coulomb(LimitModel model, const SocpSettings& settings = {}, const CoulombOptions& opt = {},
                                   CoulombReport* report = nullptr);

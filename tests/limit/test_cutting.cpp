@@ -316,6 +316,32 @@ BOOST_AUTO_TEST_CASE(coulomb_fixed_point_started_from_its_solution) {
   BOOST_CHECK_THROW(solve_limit_coulomb(model, {}, warm), cutbench::InputError);
 }
 
+BOOST_AUTO_TEST_CASE(refined_mesh_starts_from_the_previous_slip_only) {
+  // One refinement step of the Table 3 chip: on the slip the refined mesh's fixed point starts from
+  // the previous mesh's iterate (no coupled solve in its history) and reaches the cold start's
+  // F_c bar to the fixed point's tolerance; on the pressure (a nodal reaction, which does not carry
+  // over to another mesh) the warm start is not used and the run is the cold one exactly.
+  CuttingSetup c = test::table3_chip_t1_05();
+  AdaptOptions opt;
+  opt.steps = 1;
+  auto run = [&](bool on_slip, bool warm) {
+    CuttingSetup s = c;
+    s.coulomb_on_slip = on_slip;
+    s.coulomb_warm_start = warm;
+    return adapt_cutting(s, opt);
+  };
+  const auto pw = run(false, true), pc = run(false, false);
+  BOOST_TEST(pw.fc_bar == pc.fc_bar);
+  BOOST_TEST(pw.coulomb.collapse_history == pc.coulomb.collapse_history, boost::test_tools::per_element());
+  const auto sw = run(true, true), sc = run(true, false);
+  BOOST_TEST_MESSAGE("refined Table 3 chip on the slip: " << sw.coulomb.iterations << " steps warm, " << sc.coulomb.iterations
+                                                          << " cold; F_c bar " << sw.fc_bar << " / " << sc.fc_bar);
+  BOOST_TEST(sw.coulomb.converged);
+  BOOST_TEST(sw.coulomb.collapse_history.size() == static_cast<std::size_t>(sw.coulomb.iterations));
+  BOOST_TEST(sc.coulomb.collapse_history.size() == static_cast<std::size_t>(sc.coulomb.iterations) + 1);
+  BOOST_TEST(std::abs(sw.fc_bar / sc.fc_bar - 1.0) < 1e-3);
+}
+
 BOOST_AUTO_TEST_CASE(tangent_loop_frictionless_keeps_merchant) {
   // Steady-state loop with φ* from the chip direction after the contact (η2, README 3.3):
   // without friction the straight chip leaves the contact along the rake face at φ_M

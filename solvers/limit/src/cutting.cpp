@@ -377,6 +377,7 @@ double rake_coordinate(const LimitModel& m, const ContactNode& cn, double alpha)
 
 VectorXd coulomb_start_on(const LimitModel& m, const CuttingSetup& c) {
   const auto& prof = c.coulomb_start;
+  if (prof.empty()) return {};
   VectorXd x(static_cast<Eigen::Index>(m.contacts.size()));
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     const double s = rake_coordinate(m, m.contacts[i], c.alpha);
@@ -414,7 +415,7 @@ CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& c, const So
     co.relaxation = c.coulomb_anderson_depth > 0 ? c.coulomb_anderson_mixing : c.coulomb_relaxation;
     co.max_iter = c.coulomb_max_iter;
     if (c.coulomb_on_slip && c.mu > 0.0) co.variable = CoulombVariable::slip;
-    if (!c.coulomb_start.empty()) co.start = coulomb_start_on(res.model, c);
+    if (co.variable == CoulombVariable::slip) co.start = coulomb_start_on(res.model, c);
     res.solution = solve_limit_coulomb(res.model, settings, co, &res.coulomb);
   } else {
     res.solution = solve_limit(res.model, settings);
@@ -567,7 +568,7 @@ CuttingResult adapt_cutting(const CuttingSetup& c, const AdaptOptions& opt, std:
   CuttingSetup cs = c;
   for (int step = 0;; ++step) {
     CuttingResult r = solve_cutting_on(cutting_model_on_mesh(mesh, cs), cs, settings);
-    if (c.coulomb_warm_start) cs.coulomb_start = coulomb_profile(r, c);
+    if (c.coulomb_warm_start && c.coulomb_on_slip && c.mu > 0.0) cs.coulomb_start = coulomb_profile(r, c);
     refinement.push_back({mesh.num_elements(), r.fc_bar, r.stick_fraction, r.stick_length_fraction});
     if (history) history->push_back(refinement.back());
     if (step == opt.steps) {

@@ -346,7 +346,7 @@ const DeclaredParams<CuttingRun>& cutting_declaration() {
                            {"slip", "the slip (coupled cone, its dilatancy mu |w_t| cancelled by the previous step's)"}},
                           "slip"),
              [](S& s, double v) { s.geometry.coulomb_on_slip = v != 0.0; })
-        .add(option_param("coulomb_start", "start of the Coulomb fixed point on each refined mesh (adapt_steps > 0)",
+        .add(option_param("coulomb_start", "start of the Coulomb fixed point on the slip on each refined mesh (adapt_steps > 0)",
                           {{"coupled", "the mesh's own coupled (associated) solve"},
                            {"previous_mesh", "the previous mesh's last iterate, interpolated along the rake face"}},
                           "previous_mesh"),

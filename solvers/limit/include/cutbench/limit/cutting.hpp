@@ -48,13 +48,16 @@ struct CuttingSetup {
   // the fixed point's variable: true = the slip, false = the contact pressure (CoulombOptions). The
   // slip is the default: each step satisfies the Coulomb bound on its own nodal reactions, and it
   // takes fewer steps (Table 3 chip 5 against 7; fig20's mu = 1 point with 4 refinement steps 21
-  // against 32); where neither converges (10 steps at mu = 1) the slip stalls at a change of about
-  // 5e-3 and the pressure at 0.36 (solvers/limit/README.md sec. 3.1, figueiredo2024 FINDINGS F20).
+  // against 32); with 10 steps at mu = 1, each mesh started from its coupled solve, the slip stalls
+  // at a change of about 5e-3 and the pressure at 0.36 (solvers/limit/README.md sec. 3.1,
+  // figueiredo2024 FINDINGS F20); the warm start below converges there.
   // At μ = 0 (a unilateral contact only) the pressure is used.
   bool coulomb_on_slip = true;
-  // adapt_cutting: start the fixed point on each refined mesh from the previous mesh's last
-  // iterate, interpolated linearly along the rake face (the first mesh starts from the coupled
-  // solve); false: every mesh starts from its own coupled solve. Measured on fig20's mu = 1 point
+  // adapt_cutting, fixed point on the slip: start the fixed point on each refined mesh from the
+  // previous mesh's last iterate g = mu |w_t|, a velocity, interpolated linearly along the rake
+  // face (the first mesh starts from the coupled solve); false: every mesh starts from its own
+  // coupled solve. Not for the pressure iterate: a nodal reaction scales with the tributary length
+  // of its node, so it does not carry over to a refined mesh. Measured on fig20's mu = 1 point
   // (10 anisotropic steps): from the coupled solve the last meshes stall at a change of 5e-3 after
   // 40 steps (765 s); from the previous mesh the last one converges in 16 (454 s)
   // (solvers/limit/README.md sec. 3.1, figueiredo2024 FINDINGS F20)
@@ -408,7 +411,8 @@ CuttingResult adapt_cutting(const CuttingSetup& setup, const AdaptOptions& opt,
                             std::vector<CuttingAdaptStep>* history = nullptr, const SocpSettings& settings = {});
 CuttingResult solve_cutting_on(LimitModel model, const CuttingSetup& setup, const SocpSettings& settings = {});
 // The Coulomb iterate of a solution along the rake face (CuttingSetup::coulomb_start), and such a
-// profile interpolated linearly onto the contact nodes of a model (held constant beyond its ends).
+// profile interpolated linearly onto the contact nodes of a model (held constant beyond its ends;
+// empty for an empty profile).
 std::vector<std::pair<double, double>> coulomb_profile(const CuttingResult& r, const CuttingSetup& setup);
 Eigen::VectorXd coulomb_start_on(const LimitModel& m, const CuttingSetup& setup);
 

@@ -284,7 +284,7 @@ BOOST_AUTO_TEST_CASE(coulomb_fixed_point_slip_matches_pressure) {
 BOOST_AUTO_TEST_CASE(coulomb_fixed_point_started_from_its_solution) {
   // Started from its own converged iterate (the start a refined mesh gets from the previous one,
   // here on the same mesh: the rake-face profile interpolated back onto the contact nodes must
-  // return the iterate exactly), the fixed point on the slip stops within two steps with the same
+  // return the iterate to round-off), the fixed point on the slip stops within two steps with the same
   // collapse; a start of the wrong size is refused.
   CuttingSetup c = test::table3_chip_t1_05();
   const LimitModel model = cutting_model(c);
@@ -300,7 +300,7 @@ BOOST_AUTO_TEST_CASE(coulomb_fixed_point_started_from_its_solution) {
   c.coulomb_start = coulomb_profile(first, c);
   BOOST_REQUIRE(c.coulomb_start.size() == model.contacts.size());
   const Eigen::VectorXd back = coulomb_start_on(model, c);
-  BOOST_TEST((back - first.coulomb.iterate).cwiseAbs().maxCoeff() == 0.0);
+  BOOST_TEST((back - first.coulomb.iterate).cwiseAbs().maxCoeff() <= 1e-12 * first.coulomb.iterate.cwiseAbs().maxCoeff());
   CoulombOptions warm = slip;
   warm.start = back;
   CoulombReport rw;
@@ -317,11 +317,12 @@ BOOST_AUTO_TEST_CASE(coulomb_fixed_point_started_from_its_solution) {
 }
 
 BOOST_AUTO_TEST_CASE(refined_mesh_starts_from_the_previous_slip_only) {
-  // One refinement step of the Table 3 chip: on the slip the refined mesh's fixed point starts from
+  // One refinement step of the Table 3 chip (n = 4): on the slip the refined mesh's fixed point starts from
   // the previous mesh's iterate (no coupled solve in its history) and reaches the cold start's
   // F_c bar to the fixed point's tolerance; on the pressure (a nodal reaction, which does not carry
   // over to another mesh) the warm start is not used and the run is the cold one exactly.
   CuttingSetup c = test::table3_chip_t1_05();
+  c.n = 4;  // coarser than the chip's n = 6: the test runs under the sanitizers too
   AdaptOptions opt;
   opt.steps = 1;
   auto run = [&](bool on_slip, bool warm) {

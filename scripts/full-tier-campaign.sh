@@ -64,7 +64,7 @@ case "$method" in
     # Nairn: every paper-resolution run has 15 particles through the chip (about 30,000 particles;
     # 162,000 steps at the time step of NairnMPM's default factor 0.5, whatever the depth of cut: the
     # geometry, the run length and the step all scale with h), about 4.9e9 particle-steps, 20-25 min
-    # on one thread of this machine with USAVG. 93 distinct runs, about 88.5 runs' worth of N = 15 work
+    # on one thread of this machine with USAVG alone, about 45 min each with two side by side. 93 distinct runs, about 88.5 runs' worth of N = 15 work
     # (solvers/mpm/README.md, "Paper-resolution campaign"). Order: the paper's central claims first
     # (Fig 4, whose run Figs 3 and 5 share; the Fig 9 pair), then the Fig 8 transition sweep at
     # alpha = 30 deg (shared by Figs 9-12) with the cheap N = 4 and 8 convergence runs, the other rake

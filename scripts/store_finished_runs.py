@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Stage the finished runs of a run store for a commit.
+"""Stage the finished runs of a run store for a commit; or commit the checkpoints of its runs in progress.
 
     /usr/bin/python3 scripts/store_finished_runs.py [--store DIR] [--cutbench EXE] [--dry-run]
+    /usr/bin/python3 scripts/store_finished_runs.py --checkpoints [--store DIR] [--dry-run]
 
 For every run file in the store (default reports/full_tier/runs) that git does not track yet:
 - the committed checkpoint of the same run, if there is one, leaves the index (`git rm --cached`,
@@ -12,12 +13,22 @@ For every run file in the store (default reports/full_tier/runs) that git does n
   full-tier plan), the threads and wall time of its last process, and its main results.
 Nothing is committed, and the README is not edited: the printed rows are for the hand that writes
 it. Runs another live process is still computing have no run file yet and are not touched.
+
+With --checkpoints, every checkpoint in the store (`*.ckpt`: the runs in progress) is committed
+instead, so that another machine resumes those runs. A campaign rewrites a checkpoint every few
+minutes (by rename), so each is copied first and the copy's blob is staged under the checkpoint's
+path; the commit holds these checkpoints alone (it refuses to run while anything else is staged)
+and names each run with its fraction done. The paths are then marked assume-unchanged, so that
+the campaign's next rewrites do not show as changes (`scripts/store_finished_runs.py` lifts the
+flag when the run finishes).
 """
 import argparse
 import json
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -49,15 +60,61 @@ def summary(solver, s):
     return "; ".join(p for p in parts if p)
 
 
+def fraction_done(progress_path):
+    """The last fraction of a run's progress file (lines "unix time, fraction"), or None."""
+    try:
+        with open(progress_path) as f:
+            lines = [l.split() for l in f if l.strip()]
+        return float(lines[-1][-1]) if lines else None
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+def commit_checkpoints(store, rel_store, dry_run):
+    if git("diff", "--cached", "--name-only").strip():
+        print("something else is staged: commit or unstage it first", file=sys.stderr)
+        return 2
+    ckpts = sorted(f for f in os.listdir(store) if f.endswith(".ckpt"))
+    if not ckpts:
+        print("no checkpoint in " + rel_store)
+        return 0
+    done = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for f in ckpts:
+            path = os.path.join(rel_store, f)
+            copy = os.path.join(tmp, f)
+            shutil.copyfile(os.path.join(store, f), copy)  # one consistent file: a rewrite renames
+            blob = git("hash-object", "-w", copy).strip()
+            if blob == git("rev-parse", "-q", "--verify", "HEAD:" + path, check=False).strip():
+                print("unchanged " + path)
+                continue
+            frac = fraction_done(os.path.join(store, f[:-5] + ".progress"))
+            at = " at %d %%" % round(100 * frac) if frac is not None else ""
+            print("commit " + path + at)
+            if not dry_run:
+                git("update-index", "--add", "--cacheinfo", "100644,%s,%s" % (blob, path))
+            done.append((path, f[:-5] + at))
+    if not done or dry_run:
+        return 0
+    git("commit", "-q", "-m", "run store: checkpoints of the runs in progress (%s)" % ", ".join(l for _, l in done))
+    for path, _ in done:
+        git("update-index", "--assume-unchanged", path)
+    print(git("log", "--oneline", "-1").strip())
+    return 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--store", default="reports/full_tier/runs")
     ap.add_argument("--cutbench", default="build/release/benchmarks/cli/cutbench")
     ap.add_argument("--dry-run", action="store_true", help="print what would be staged, change nothing")
+    ap.add_argument("--checkpoints", action="store_true", help="commit the checkpoints of the runs in progress")
     a = ap.parse_args()
     store = os.path.join(ROOT, a.store) if not os.path.isabs(a.store) else a.store
     exe = os.path.join(ROOT, a.cutbench) if not os.path.isabs(a.cutbench) else a.cutbench
     rel_store = os.path.relpath(store, ROOT)
+    if a.checkpoints:
+        return commit_checkpoints(store, rel_store, a.dry_run)
 
     new = sorted(f for f in os.listdir(store)
                  if f.endswith(".run") and not tracked(os.path.join(rel_store, f)))

@@ -8,6 +8,7 @@
 #include "cutbench/limit/cutting.hpp"
 
 #include "chip_fixture.hpp"
+#include "release_only.hpp"
 
 using namespace cutbench::limit;
 
@@ -209,7 +210,9 @@ BOOST_AUTO_TEST_CASE(frictional_chip_against_merchant) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(coulomb_fixed_point_anderson_matches_relaxed) {
+BOOST_AUTO_TEST_CASE(coulomb_fixed_point_anderson_matches_relaxed,
+                     CUTBENCH_RELEASE_ONLY("paths covered by frictional_block_coulomb_fixed_point (plain update) and "
+                                           "coulomb_fixed_point_slip_matches_pressure (Anderson)")) {
   // The pressure fixed point reaches the same non-associated Coulomb state with either update,
   // and Anderson acceleration takes fewer steps. Table 3 chip (t1 = 0.5 mm: mu = 0.4809,
   // phi = 30.4 deg, l = 1.899 t1, n = 6), both iterated to a change of 1e-5 of max p:
@@ -559,7 +562,9 @@ BOOST_AUTO_TEST_CASE(curled_free_chip) {
   BOOST_CHECK_THROW(cutting_model(c), cutbench::InputError);
 }
 
-BOOST_AUTO_TEST_CASE(workpiece_block_frictionless_converges_to_merchant) {
+BOOST_AUTO_TEST_CASE(workpiece_block_frictionless_converges_to_merchant,
+                     CUTBENCH_RELEASE_ONLY("paths covered by workpiece_block_depth_does_not_matter and "
+                                           "frictional_chip_adaptive")) {
   // The paper's domain: the workpiece below the cutting line is meshed and the tool tip is a rake
   // contact node. Frictionless, alpha = 0, phi = 45 deg, l = t1: the single-shear-plane mechanism
   // (the block moving rigidly, touching the chip at the tip only) gives Merchant's F_c bar = 2
